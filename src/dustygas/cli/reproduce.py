@@ -1,0 +1,43 @@
+"""``dustygas reproduce``: regenerate the computational figures of the thesis."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from ..errors import UserError
+
+HELP = "regenerate thesis figures (PNG + the numbers behind them)"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("figures", nargs="*", metavar="FIG", help="figure names, e.g. fig3.1 fig3.5")
+    p.add_argument("--all", action="store_true", help="every registered figure")
+    p.add_argument("--list", action="store_true", help="list the figures and stop")
+    p.add_argument("-o", "--output", default="figures", metavar="DIR", help="output directory (default: figures)")
+    p.add_argument("--full", action="store_true", help="thesis-scale resolution instead of the quick default")
+
+
+def main(args: argparse.Namespace) -> int:
+    from ..reproduce import figure_names, get_figure
+
+    if args.list:
+        for name in figure_names():
+            spec = get_figure(name)
+            print(f"{name:<10} {spec.summary}  [{spec.cost}]")
+        return 0
+    names = figure_names() if args.all else args.figures
+    if not names:
+        raise UserError("reproduce: name at least one figure, or --all (see: dustygas reproduce --list)")
+    specs = [get_figure(n) for n in names]  # validate every name before writing anything
+    out = Path(args.output)
+    if out.exists() and not out.is_dir():
+        raise UserError(f"--output {out}: exists and is not a directory")
+    out.mkdir(parents=True, exist_ok=True)
+    for spec in specs:
+        t0 = time.perf_counter()
+        paths = spec.function(out, quick=not args.full)
+        print(f"{spec.name}: {', '.join(str(p) for p in paths)} ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
+    return 0

@@ -1,0 +1,115 @@
+"""Registered problem set-ups.
+
+A problem is a class with a ``name``, a one-line ``summary``, a parameter ``schema`` (sections
+of :class:`~dustygas.config.Param`, always including ``run``) and a ``build(cfg)`` method that
+returns an engine holding the initial state. Register it with :func:`register`; a *preset* is
+the same problem under another name with different defaults (``si-linA`` is ``si-linear`` with
+the Youdin & Johansen 2007 linA parameters)::
+
+    @register
+    class SoundWave(Problem):
+        name = "soundwave"
+        summary = "Linear sound wave in a periodic box; exact solution for comparison."
+        schema = {"run": with_defaults(RUN_SCHEMA, tlim=1.0), "grid": ..., "problem": ...}
+
+        def build(self, cfg):
+            ...
+
+    preset("soundwave-3d", SoundWave, "Oblique 3D sound wave.", grid={"nx": 32, "ny": 32, "nz": 32})
+
+Every module in this package is imported the first time the registry is queried, so a new
+problem only needs a new file here.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from typing import Any, ClassVar, Mapping
+
+from ..config import Config, Param, Schema, build_config, with_defaults
+from ..errors import UserError
+
+__all__ = ["Problem", "register", "preset", "get_problem", "problem_names", "all_problems"]
+
+
+class Problem:
+    """Base class of a registered problem (see module docstring)."""
+
+    name: ClassVar[str] = ""
+    summary: ClassVar[str] = ""
+    schema: ClassVar[Schema] = {}
+
+    def validate(self, cfg: Config) -> None:
+        """Cross-parameter checks; raise :class:`~dustygas.errors.ConfigError` on failure."""
+
+    def build(self, cfg: Config) -> Any:
+        """Return an engine holding the initial state for ``cfg``."""
+        raise NotImplementedError
+
+    def config(self, files=(), overrides=(), data: Mapping | None = None) -> Config:
+        """Defaults < files < data < overrides, validated against :attr:`schema`."""
+        cfg = build_config(self.schema, files, overrides, data, problem_name=self.name)
+        self.validate(cfg)
+        return cfg
+
+
+_REGISTRY: dict[str, Problem] = {}
+_DISCOVERED = False
+
+
+def register(cls: type[Problem]) -> type[Problem]:
+    """Class decorator: register a problem under ``cls.name``."""
+    if not cls.name:
+        raise ValueError(f"{cls.__name__} has no name")
+    if cls.name in _REGISTRY and type(_REGISTRY[cls.name]) is not cls:
+        raise ValueError(f"problem {cls.name!r} registered twice")
+    if "run" not in cls.schema:
+        raise ValueError(f"problem {cls.name!r} has no 'run' section in its schema")
+    _REGISTRY[cls.name] = cls()
+    return cls
+
+
+def preset(name: str, base: type[Problem], summary: str, **defaults: Mapping[str, Any]) -> type[Problem]:
+    """Register ``base`` again as ``name`` with different defaults per section."""
+    schema = {s: dict(params) for s, params in base.schema.items()}
+    for section, values in defaults.items():
+        if section not in schema:
+            raise ValueError(f"preset {name!r}: {base.name!r} has no section {section!r}")
+        schema[section] = with_defaults(schema[section], **values)
+    cls = type(base.__name__ + "_" + name.replace("-", "_"), (base,), {"name": name, "summary": summary, "schema": schema})
+    return register(cls)
+
+
+def _discover() -> None:
+    global _DISCOVERED
+    if _DISCOVERED:
+        return
+    _DISCOVERED = True
+    for mod in pkgutil.iter_modules(__path__):
+        if not mod.name.startswith("_"):
+            importlib.import_module(f"{__name__}.{mod.name}")
+
+
+def problem_names() -> list[str]:
+    """Names of all registered problems, sorted."""
+    _discover()
+    return sorted(_REGISTRY)
+
+
+def all_problems() -> dict[str, Problem]:
+    _discover()
+    return dict(sorted(_REGISTRY.items()))
+
+
+def get_problem(name: str) -> Problem:
+    """The problem registered as ``name``; a one-line error with a suggestion otherwise."""
+    _discover()
+    try:
+        return _REGISTRY[name]
+    except KeyError:
+        import difflib
+
+        close = difflib.get_close_matches(name, _REGISTRY, n=1, cutoff=0.5)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        raise UserError(f"unknown problem '{name}'{hint} (see: dustygas problems)") from None

@@ -1,0 +1,79 @@
+"""One function per computational figure of the thesis.
+
+Register a figure with :func:`figure`; the function receives the output directory and a
+``quick`` flag (laptop-scale defaults when True, thesis-scale when False), writes the PNG and
+the numbers behind it next to it (CSV or HDF5), and returns the written paths::
+
+    @figure("fig3.5", "Radial drift velocity -v_r/v_K versus tau_s (thesis eq. 3.23)")
+    def fig3_5(output: Path, quick: bool = True) -> list[Path]:
+        ...
+
+Every module of this package is imported on first use, so a new figure only needs a new file.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from ..errors import UserError
+
+__all__ = ["figure", "figure_names", "get_figure", "FigureSpec"]
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    name: str
+    summary: str
+    function: Callable[..., list[Path]]
+    cost: str  # rough wall time at quick scale, e.g. "1 s", "5 min"
+
+
+_FIGURES: dict[str, FigureSpec] = {}
+_DISCOVERED = False
+
+
+def figure(name: str, summary: str, cost: str = "seconds") -> Callable:
+    """Decorator registering a figure function under ``name`` (e.g. ``"fig3.5"``)."""
+
+    def deco(fn: Callable[..., list[Path]]) -> Callable[..., list[Path]]:
+        if name in _FIGURES and _FIGURES[name].function is not fn:
+            raise ValueError(f"figure {name!r} registered twice")
+        _FIGURES[name] = FigureSpec(name, summary, fn, cost)
+        return fn
+
+    return deco
+
+
+def _discover() -> None:
+    global _DISCOVERED
+    if _DISCOVERED:
+        return
+    _DISCOVERED = True
+    for mod in pkgutil.iter_modules(__path__):
+        if not mod.name.startswith("_"):
+            importlib.import_module(f"{__name__}.{mod.name}")
+
+
+def _key(name: str) -> tuple:
+    parts = name.removeprefix("fig").replace("-", ".").split(".")
+    return tuple(int(p) if p.isdigit() else 10**6 for p in parts) + (name,)
+
+
+def figure_names() -> list[str]:
+    _discover()
+    return sorted(_FIGURES, key=_key)
+
+
+def get_figure(name: str) -> FigureSpec:
+    _discover()
+    if name not in _FIGURES:
+        import difflib
+
+        close = difflib.get_close_matches(name, _FIGURES, n=1, cutoff=0.5)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        raise UserError(f"unknown figure '{name}'{hint} (see: dustygas reproduce --list)")
+    return _FIGURES[name]

@@ -1,0 +1,368 @@
+"""The run loop, written once for every engine.
+
+An *engine* (grid gas, grid gas + particles, SPH, ...) owns the simulation state and knows how
+to advance it; a *problem* (see :mod:`dustygas.problems`) owns the parameters and builds an
+engine holding the initial state. The loop here does everything else: time-step control,
+snapshots, history, checkpoints, wall-time limits, signals, progress output, restarts and the
+final throughput line.
+
+The engine protocol (:class:`Engine`) is deliberately small::
+
+    engine.t, engine.cycle          simulated time and step count
+    engine.timestep() -> float      largest stable dt now
+    engine.advance(dt)              one step; must update t and cycle
+    engine.history() -> dict        scalar diagnostics for history.h5
+    engine.snapshot() -> (arrays, attrs)
+    engine.checkpoint() -> (arrays, attrs)   everything needed to continue bit-identically
+    engine.restore(arrays, attrs)   inverse of checkpoint() on a freshly built engine
+    engine.work_units, engine.work_label     e.g. (64*64, "zone-cycles")
+
+Restarting rebuilds the engine from the run's ``config.toml`` with the problem's ``build`` and
+then calls ``restore`` with the newest checkpoint, so a run killed at any moment continues to
+outputs identical to an uninterrupted run.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+from ._version import __version__
+from .config import Config, Param, dump_toml
+from .errors import SimulationError, UserError
+from .io.rundir import RunDirectory
+
+__all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine"]
+
+#: Parameters of the run loop; problems copy this section with their own defaults
+#: (``with_defaults(RUN_SCHEMA, tlim=6.0)``).
+RUN_SCHEMA: dict[str, Param] = {
+    "tlim": Param(1.0, "simulated time at which the run stops", "code time", min=0.0),
+    "max_cycles": Param(0, "stop after this many steps (0: no limit)", min=0),
+    "dt_snapshot": Param(0.0, "simulated time between snapshots (0: first and last only)", "code time", min=0.0),
+    "dt_history": Param(0.0, "simulated time between history rows (0: every step)", "code time", min=0.0),
+    "dt_checkpoint": Param(0.0, "simulated time between checkpoints (0: by wall clock only)", "code time", min=0.0),
+    "checkpoint_wall": Param(600.0, "wall-clock seconds between checkpoints (0: never by wall clock)", "s", min=0.0),
+    "keep_checkpoints": Param(2, "number of newest checkpoints kept", min=1),
+    "walltime": Param(0.0, "checkpoint and stop after this many wall-clock seconds (0: no limit)", "s", min=0.0),
+    "log_every": Param(100, "steps between progress lines when not on a terminal", min=1),
+    "threads": Param(0, "numba threads (0: all available)", min=0),
+}
+
+
+@runtime_checkable
+class Engine(Protocol):
+    """What the run loop needs from an engine (see module docstring)."""
+
+    t: float
+    cycle: int
+    work_units: int
+    work_label: str
+
+    def timestep(self) -> float: ...
+
+    def advance(self, dt: float) -> None: ...
+
+    def history(self) -> dict[str, float]: ...
+
+    def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]: ...
+
+    def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]: ...
+
+    def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None: ...
+
+
+@dataclass
+class RunResult:
+    """What a finished (or stopped) run reports."""
+
+    path: Path
+    engine: Any
+    status: str  # "finished", "walltime", "signal", "max_cycles"
+    cycles: int
+    wall: float
+    throughput: float
+    work_label: str
+    exit_code: int = 0
+
+
+@dataclass
+class _LoopState:
+    snapshot_index: int = 0
+    next_snapshot: float = math.inf
+    next_history: float = 0.0
+    next_checkpoint: float = math.inf
+    checkpoint_index: int = 0
+    last_snapshot_time: float = -math.inf
+    history: dict[str, list] = field(default_factory=dict)
+
+
+class _StopFlag:
+    """Turns SIGTERM/SIGINT into a flag the loop checks after every step."""
+
+    def __init__(self) -> None:
+        self.signum = 0
+        self._old: dict[int, Any] = {}
+
+    def __enter__(self) -> "_StopFlag":
+        for sig in (signal.SIGTERM, signal.SIGINT):
+            try:
+                self._old[sig] = signal.signal(sig, self._handler)
+            except ValueError:  # not in the main thread
+                pass
+        return self
+
+    def _handler(self, signum: int, frame: Any) -> None:
+        if self.signum:  # second signal: give up immediately
+            raise KeyboardInterrupt
+        self.signum = signum
+
+    def __exit__(self, *exc: Any) -> None:
+        for sig, handler in self._old.items():
+            signal.signal(sig, handler)
+
+
+def _set_threads(n: int) -> None:
+    if n <= 0:
+        return
+    import numba
+
+    numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
+
+
+class RunLoop:
+    """Drive ``engine`` from its current time to ``cfg.run.tlim`` writing into ``rundir``."""
+
+    def __init__(self, engine: Engine, cfg: Config, rundir: RunDirectory, progress: bool | None = None):
+        self.engine = engine
+        self.cfg = cfg
+        self.run = cfg.run
+        self.rundir = rundir
+        self.state = _LoopState()
+        self.progress = sys.stderr.isatty() if progress is None else progress
+
+    # ----------------------------------------------------------------- outputs
+    def _attrs(self) -> dict[str, Any]:
+        return {
+            "time": float(self.engine.t),
+            "cycle": int(self.engine.cycle),
+            "problem": self.cfg.problem_name,
+            "dustygas_version": __version__,
+        }
+
+    def _write_snapshot(self) -> None:
+        arrays, attrs = self.engine.snapshot()
+        self.rundir.write_snapshot(self.state.snapshot_index, arrays, {**attrs, **self._attrs()})
+        self.state.snapshot_index += 1
+        self.state.last_snapshot_time = float(self.engine.t)
+
+    def _record_history(self) -> None:
+        row = {"time": float(self.engine.t), "cycle": float(self.engine.cycle)}
+        row.update({k: float(v) for k, v in self.engine.history().items()})
+        hist = self.state.history
+        n = len(hist.get("time", []))
+        for key, value in row.items():
+            hist.setdefault(key, [math.nan] * n).append(value)
+        for key, col in hist.items():  # a diagnostic that disappeared keeps its column aligned
+            if len(col) < n + 1:
+                col.append(math.nan)
+
+    def _write_history(self) -> None:
+        cols = {k: np.asarray(v, dtype=np.float64) for k, v in self.state.history.items()}
+        self.rundir.write_history(cols, self._attrs())
+
+    def write_checkpoint(self) -> Path:
+        arrays, attrs = self.engine.checkpoint()
+        out = {f"engine/{k}": v for k, v in arrays.items()}
+        out.update({f"history/{k}": np.asarray(v, dtype=np.float64) for k, v in self.state.history.items()})
+        s = self.state
+        loop = {
+            "loop_snapshot_index": s.snapshot_index,
+            "loop_next_snapshot": s.next_snapshot,
+            "loop_next_history": s.next_history,
+            "loop_next_checkpoint": s.next_checkpoint,
+            "loop_checkpoint_index": s.checkpoint_index + 1,
+            "loop_last_snapshot_time": s.last_snapshot_time,
+            "engine_t": float(self.engine.t),
+            "engine_cycle": int(self.engine.cycle),
+        }
+        eattrs = {f"engine_attr_{k}": v for k, v in attrs.items()}
+        path = self.rundir.write_checkpoint(
+            s.checkpoint_index, out, {**loop, **eattrs, **self._attrs()}, keep=self.run.keep_checkpoints
+        )
+        self._write_history()
+        s.checkpoint_index += 1
+        self.rundir.log(f"checkpoint {path.name} at time={self.engine.t:.6g} cycle={self.engine.cycle}")
+        return path
+
+    def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
+        """Restore loop and engine state from a checkpoint read with :func:`read_h5`."""
+        eng = {k[len("engine/"):]: v for k, v in arrays.items() if k.startswith("engine/")}
+        eattrs = {k[len("engine_attr_"):]: v for k, v in attrs.items() if k.startswith("engine_attr_")}
+        self.engine.restore(eng, eattrs)
+        self.engine.t = float(attrs["engine_t"])
+        self.engine.cycle = int(attrs["engine_cycle"])
+        s = self.state
+        s.snapshot_index = int(attrs["loop_snapshot_index"])
+        s.next_snapshot = float(attrs["loop_next_snapshot"])
+        s.next_history = float(attrs["loop_next_history"])
+        s.next_checkpoint = float(attrs["loop_next_checkpoint"])
+        s.checkpoint_index = int(attrs["loop_checkpoint_index"])
+        s.last_snapshot_time = float(attrs["loop_last_snapshot_time"])
+        s.history = {k[len("history/"):]: list(v) for k, v in arrays.items() if k.startswith("history/")}
+
+    # ----------------------------------------------------------------- loop
+    def start(self) -> None:
+        """Outputs at the initial time of a fresh run."""
+        run, s = self.run, self.state
+        t0 = float(self.engine.t)
+        s.next_snapshot = t0 + run.dt_snapshot if run.dt_snapshot > 0 else math.inf
+        s.next_history = t0 + run.dt_history if run.dt_history > 0 else t0
+        s.next_checkpoint = t0 + run.dt_checkpoint if run.dt_checkpoint > 0 else math.inf
+        self._check_finite()
+        self._write_snapshot()
+        self._record_history()
+
+    def _check_finite(self) -> None:
+        values = self.engine.history()
+        bad = [k for k, v in values.items() if not np.isfinite(v)]
+        if bad:
+            raise SimulationError(
+                f"non-finite diagnostics ({', '.join(bad)}) at time={self.engine.t:.6g} cycle={self.engine.cycle}"
+            )
+
+    def loop(self) -> RunResult:
+        """Advance to ``tlim``; return how the run ended."""
+        run, s, eng = self.run, self.state, self.engine
+        _set_threads(run.threads)
+        tlim = run.tlim
+        start_wall = time.perf_counter()
+        last_ckpt_wall = start_wall
+        start_cycle = eng.cycle
+        status = "finished"
+        bar = None
+        if self.progress:
+            from tqdm import tqdm
+
+            bar = tqdm(total=tlim, initial=min(eng.t, tlim), unit="t", file=sys.stderr,
+                       bar_format="{l_bar}{bar}| t={n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
+        work = 0.0
+        step_wall = 0.0
+        with _StopFlag() as stop:
+            try:
+                while eng.t < tlim * (1 - 1e-14):
+                    if run.max_cycles and eng.cycle - start_cycle >= run.max_cycles:
+                        status = "max_cycles"
+                        break
+                    dt = float(eng.timestep())
+                    if not (dt > 0 and math.isfinite(dt)):
+                        raise SimulationError(f"invalid time step dt={dt!r} at time={eng.t:.6g} cycle={eng.cycle}")
+                    dt = min(dt, tlim - eng.t)
+                    t_step = time.perf_counter()
+                    eng.advance(dt)
+                    now = time.perf_counter()
+                    step_wall = max(step_wall * 0.9, now - t_step)
+                    work += eng.work_units
+                    if run.dt_history <= 0 or eng.t >= s.next_history:
+                        self._check_finite()
+                        self._record_history()
+                        while run.dt_history > 0 and s.next_history <= eng.t:
+                            s.next_history += run.dt_history
+                    if eng.t >= s.next_snapshot:
+                        self._write_snapshot()
+                        while s.next_snapshot <= eng.t:
+                            s.next_snapshot += run.dt_snapshot
+                    if bar is not None:
+                        bar.n = min(eng.t, tlim)
+                        bar.set_postfix_str(f"cycle={eng.cycle} dt={dt:.3g}", refresh=False)
+                        bar.update(0)
+                    elif eng.cycle % run.log_every == 0:
+                        print(f"cycle={eng.cycle} time={eng.t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
+                    want_ckpt = eng.t >= s.next_checkpoint or (
+                        run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
+                    )
+                    if eng.t >= s.next_checkpoint:
+                        while s.next_checkpoint <= eng.t:
+                            s.next_checkpoint += run.dt_checkpoint
+                    if want_ckpt and eng.t < tlim * (1 - 1e-14):
+                        self.write_checkpoint()
+                        last_ckpt_wall = time.perf_counter()
+                    if stop.signum:
+                        status = "signal"
+                        break
+                    if run.walltime > 0 and (time.perf_counter() - start_wall) + 2 * step_wall >= run.walltime:
+                        status = "walltime"
+                        break
+            except SimulationError as exc:
+                self._dump_crash(exc)
+                raise
+            finally:
+                if bar is not None:
+                    bar.close()
+        wall = time.perf_counter() - start_wall
+        cycles = eng.cycle - start_cycle
+        if status == "finished":
+            if s.last_snapshot_time < eng.t:
+                self._write_snapshot()
+            self._write_history()
+        else:
+            self.write_checkpoint()
+        throughput = work / wall if wall > 0 else 0.0
+        exit_code = 128 + stop.signum if status == "signal" else 0
+        return RunResult(self.rundir.path, eng, status, cycles, wall, throughput, eng.work_label, exit_code)
+
+    def _dump_crash(self, exc: SimulationError) -> None:
+        try:
+            arrays, attrs = self.engine.checkpoint()
+        except Exception:  # the state may be too broken to serialise; the diagnostic still matters
+            arrays, attrs = {}, {}
+        arrays = {**{f"state/{k}": v for k, v in arrays.items()}, **{f"offending/{k}": v for k, v in exc.state.items()}}
+        self.rundir.write_crash(arrays, {**{f"engine_attr_{k}": v for k, v in attrs.items()}, **self._attrs(), "error": str(exc)})
+        self.rundir.log(f"stopped: {exc} (state dumped to {self.rundir.crash_file.name})")
+
+
+def config_text(cfg: Config) -> str:
+    """The run directory's ``config.toml``: every parameter, then ``[dustygas]`` problem and version."""
+    return dump_toml({**cfg.data, "dustygas": {"problem": cfg.problem_name, "version": __version__}})
+
+
+def run_engine(
+    engine: Engine,
+    cfg: Config,
+    path: str | Path,
+    overwrite: bool = False,
+    progress: bool | None = None,
+    restart_from: tuple[dict, dict] | None = None,
+) -> RunResult:
+    """Run ``engine`` (already holding its initial state) into the run directory ``path``.
+
+    With ``restart_from=(arrays, attrs)`` of a checkpoint, the directory must already exist
+    and the run continues from that state.
+    """
+    rundir = RunDirectory(path)
+    loop = RunLoop(engine, cfg, rundir, progress)
+    if restart_from is None:
+        rundir.create(overwrite)
+        rundir.write_config(config_text(cfg))
+        rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
+        loop.start()
+    else:
+        loop.restore(*restart_from)
+        rundir.write_config(config_text(cfg))
+        rundir.log(f"restart at time={engine.t:.6g} cycle={engine.cycle} pid={os.getpid()}")
+    result = loop.loop()
+    label = result.work_label or "updates"
+    msg = (
+        f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.3g}s "
+        f"throughput={result.throughput:.4g} {label}/s"
+    )
+    rundir.log(msg)
+    return result

@@ -1,0 +1,104 @@
+"""Run loop: outputs, energy of the toy engine, restart after SIGKILL, SIGTERM and walltime."""
+
+import signal
+import time
+
+import numpy as np
+import pytest
+
+import _toyproblem  # noqa: F401  (registers toy-oscillator)
+from dustygas import api
+from dustygas.io import read_h5
+from dustygas.io.rundir import RunDirectory
+
+from ._cli import cli, cli_popen
+
+
+def _outputs(path):
+    rd = RunDirectory(path)
+    out = {}
+    for f in rd.snapshots():
+        arrays, attrs = read_h5(f)
+        out[f.name] = (arrays, {k: v for k, v in attrs.items()})
+    out["history"] = read_h5(rd.history_file)
+    return out
+
+
+def _assert_identical(a, b):
+    assert a.keys() == b.keys()
+    for key in a:
+        arrays_a, attrs_a = a[key]
+        arrays_b, attrs_b = b[key]
+        assert arrays_a.keys() == arrays_b.keys(), key
+        for name in arrays_a:
+            np.testing.assert_array_equal(arrays_a[name], arrays_b[name], err_msg=f"{key}:{name}")
+        assert attrs_a == attrs_b, key
+
+
+def test_leapfrog_energy_and_snapshot_times(tmp_path):
+    res = api.run("toy-oscillator", output=tmp_path / "r", set=["run.tlim=2.0", "problem.cfl=0.01"])
+    assert res.status == "finished" and res.cycles == 200
+    hist, _ = read_h5(tmp_path / "r" / "history.h5")
+    e = hist["energy"]
+    # leapfrog: relative energy error bounded by ~ (omega dt)^2 / 4
+    assert np.max(np.abs(e / e[0] - 1)) < 0.25 * 0.01**2 * 1.01
+    times = [read_h5(f)[1]["time"] for f in RunDirectory(tmp_path / "r").snapshots()]
+    assert times[0] == 0.0 and times[-1] == pytest.approx(2.0, abs=1e-12)
+    assert len(times) == 5
+
+
+def test_sigkill_after_checkpoint_restarts_bit_identically(tmp_path):
+    args = ["--set", "run.tlim=3.0", "--set", "run.dt_checkpoint=0.5", "--set", "run.dt_snapshot=0.25",
+            "--set", "problem.sleep=0.002"]
+    ref = cli("run", "toy-oscillator", "-o", "ref", *args, cwd=tmp_path)
+    assert ref.returncode == 0, ref.stderr
+
+    proc = cli_popen("run", "toy-oscillator", "-o", "killed", *args, cwd=tmp_path)
+    chk = tmp_path / "killed" / "checkpoints"
+    deadline = time.time() + 60
+    while time.time() < deadline and not list(chk.glob("chk_00001.h5")):
+        time.sleep(0.01)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    assert proc.returncode == -signal.SIGKILL
+    assert list(chk.glob("chk_*.h5")), "no checkpoint before the kill"
+    snaps_before = len(RunDirectory(tmp_path / "killed").snapshots())
+    assert snaps_before < len(RunDirectory(tmp_path / "ref").snapshots())
+
+    again = cli("run", "--restart", "killed", cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    _assert_identical(_outputs(tmp_path / "ref"), _outputs(tmp_path / "killed"))
+
+
+def test_sigterm_writes_checkpoint_and_restart_finishes(tmp_path):
+    args = ["--set", "run.tlim=3.0", "--set", "problem.sleep=0.002"]
+    ref = cli("run", "toy-oscillator", "-o", "ref", *args, cwd=tmp_path)
+    proc = cli_popen("run", "toy-oscillator", "-o", "term", *args, cwd=tmp_path)
+    snaps = tmp_path / "term" / "snapshots"
+    deadline = time.time() + 60
+    while time.time() < deadline and not list(snaps.glob("snap_00000.h5")):
+        time.sleep(0.01)
+    time.sleep(0.2)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 128 + signal.SIGTERM, err
+    assert "dustygas run --restart" in err
+    assert RunDirectory(tmp_path / "term").checkpoints()
+    again = cli("run", "--restart", "term", cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    _assert_identical(_outputs(tmp_path / "ref"), _outputs(tmp_path / "term"))
+
+
+def test_walltime_stops_with_checkpoint(tmp_path):
+    res = api.run("toy-oscillator", output=tmp_path / "w", set=["run.tlim=100.0", "problem.sleep=0.001"],
+                  walltime=0.3)
+    assert res.status == "walltime" and res.engine.t < 100.0
+    assert RunDirectory(tmp_path / "w").checkpoints()
+    res2 = api.restart(tmp_path / "w", set=["run.tlim=0.5"] if res.engine.t < 0.5 else ["run.tlim=" + repr(res.engine.t + 0.1)])
+    assert res2.status == "finished"
+
+
+def test_restart_without_checkpoint_is_a_user_error(tmp_path):
+    api.run("toy-oscillator", output=tmp_path / "r", set=["run.tlim=0.1"])
+    proc = cli("run", "--restart", "r", cwd=tmp_path)
+    assert proc.returncode == 2 and "no checkpoint" in proc.stderr
