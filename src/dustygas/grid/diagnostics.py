@@ -1,0 +1,158 @@
+"""Reductions over the domain: the Courant time step, history sums, validity checks.
+
+Every reduction forms one partial result per row of cells along x (rows ``r = j + ny k`` in
+parallel) and then combines the rows in a fixed order, so the result is the same for any
+number of threads. The row functions are serial; the integrator's driver runs them inside its
+own ``prange`` loops, and the ``*_total`` wrappers here do the same for calls from Python.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+__all__ = ["row_signal_rate", "combine_rates", "max_signal_rate", "row_sums", "domain_sums", "row_component_sum",
+           "component_sum"]
+
+
+@njit(cache=True, error_model="numpy")
+def row_signal_rate(u, r, lay, sp, cs) -> tuple[float, int]:
+    """Largest ``max_d (|v_d| + c_s) / Delta x_d`` in row ``r``, and its first invalid cell.
+
+    The Courant-Friedrichs-Lewy condition (thesis eq. 2.12, ``Delta t <= Delta x / C`` for a
+    signal speed C; eq. 2.13 with the sound speed, ``Delta t <= h / c_s``), applied to the
+    fastest signal of the isothermal Euler equations along each active axis, ``|v_d| + c_s``,
+    gives ``Delta t = C_cfl / rate``; the per-cell maximum over axes is Athena's convention
+    (Stone et al. 2008), so Courant numbers compare directly. The invalid cell is the flat
+    domain index ``(k ny + j) nx + i`` of the first cell of the row with a non-positive or
+    non-finite density or a non-finite momentum (-1 if none).
+    """
+    nx, ny, nz, gx, gy, gz = lay
+    j = r % ny
+    k = r // ny
+    best = 0.0
+    bad = -1
+    for i in range(nx):
+        rho = u[0, gz + k, gy + j, gx + i]
+        mx = u[1, gz + k, gy + j, gx + i]
+        my = u[2, gz + k, gy + j, gx + i]
+        mz = u[3, gz + k, gy + j, gx + i]
+        if not (rho > 0.0 and math.isfinite(rho) and math.isfinite(mx) and math.isfinite(my) and math.isfinite(mz)):
+            if bad < 0:
+                bad = (k * ny + j) * nx + i
+            continue
+        inv = 1.0 / rho
+        if nx > 1:
+            best = max(best, (abs(mx) * inv + cs) / sp.dx)
+        if ny > 1:
+            best = max(best, (abs(my) * inv + cs) / sp.dy)
+        if nz > 1:
+            best = max(best, (abs(mz) * inv + cs) / sp.dz)
+    return best, bad
+
+
+@njit(cache=True, error_model="numpy")
+def combine_rates(rates, bads) -> tuple[float, int]:
+    """Maximum rate and first invalid cell over rows, in row order."""
+    rate = 0.0
+    bad = -1
+    for r in range(rates.shape[0]):
+        rate = max(rate, rates[r])
+        if bad < 0 and bads[r] >= 0:
+            bad = bads[r]
+    return rate, bad
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def max_signal_rate(u, lay, sp, cs) -> tuple[float, int]:
+    """:func:`row_signal_rate` over the whole domain (see there)."""
+    rows = lay.ny * lay.nz
+    rates = np.zeros(rows)
+    bads = np.full(rows, -1, dtype=np.int64)
+    for r in prange(rows):
+        rates[r], bads[r] = row_signal_rate(u, r, lay, sp, cs)
+    return combine_rates(rates, bads)
+
+
+@njit(cache=True, error_model="numpy")
+def row_sums(u, r, lay, xc, to_full, to_relative, out) -> None:
+    """``out[:] = [mass, p_x, p_y, p_z, kinetic energy, rho_max, rho_min]`` of row ``r``.
+
+    Per unit cell volume. ``p_y`` is the momentum of the full velocity
+    ``v_y = v_y,stored - to_full * x`` (``to_full = q Omega`` under orbital advection, else 0);
+    the kinetic energy is that of the velocity relative to the background shear,
+    ``v_y,stored + to_relative * x`` (``to_relative = q Omega`` in a shearing box without
+    orbital advection, else 0).
+    """
+    nx, ny, nz, gx, gy, gz = lay
+    j = r % ny
+    k = r // ny
+    m = px = py = pz = ke = 0.0
+    hi = -np.inf
+    lo = np.inf
+    for i in range(nx):
+        rho = u[0, gz + k, gy + j, gx + i]
+        mx = u[1, gz + k, gy + j, gx + i]
+        my = u[2, gz + k, gy + j, gx + i]
+        mz = u[3, gz + k, gy + j, gx + i]
+        x = xc[gx + i]
+        myr = my + to_relative * x * rho
+        m += rho
+        px += mx
+        py += my - to_full * x * rho
+        pz += mz
+        ke += 0.5 * (mx * mx + myr * myr + mz * mz) / rho
+        hi = max(hi, rho)
+        lo = min(lo, rho)
+    out[0] = m
+    out[1] = px
+    out[2] = py
+    out[3] = pz
+    out[4] = ke
+    out[5] = hi
+    out[6] = lo
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def domain_sums(u, lay, xc, to_full, to_relative) -> np.ndarray:
+    """:func:`row_sums` combined over rows (sums, maximum, minimum)."""
+    rows = lay.ny * lay.nz
+    part = np.zeros((rows, 7))
+    for r in prange(rows):
+        row_sums(u, r, lay, xc, to_full, to_relative, part[r])
+    out = np.zeros(7)
+    out[5] = -np.inf
+    out[6] = np.inf
+    for r in range(rows):
+        for c in range(5):
+            out[c] += part[r, c]
+        out[5] = max(out[5], part[r, 5])
+        out[6] = min(out[6], part[r, 6])
+    return out
+
+
+@njit(cache=True, error_model="numpy")
+def row_component_sum(u, var, r, lay) -> float:
+    """Sum of conserved variable ``var`` over row ``r`` of domain cells."""
+    nx, ny, nz, gx, gy, gz = lay
+    j = r % ny
+    k = r // ny
+    acc = 0.0
+    for i in range(nx):
+        acc += u[var, gz + k, gy + j, gx + i]
+    return acc
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def component_sum(u, var, lay) -> float:
+    """Sum of conserved variable ``var`` over the domain (rows combined in order)."""
+    rows = lay.ny * lay.nz
+    part = np.zeros(rows)
+    for r in prange(rows):
+        part[r] = row_component_sum(u, var, r, lay)
+    total = 0.0
+    for r in range(rows):
+        total += part[r]
+    return total
