@@ -48,8 +48,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghost_item, ghost_items
-from .diagnostics import combine_rates, row_component_sum, row_signal_rate
+from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts
+from .diagnostics import combine_rates, row_signal_rate
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
 from .sweep import pencil_count, sweep_pencils
@@ -125,13 +125,12 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         weight = reals[s, 4]
         method = scheme[0] if ints[s, 3] < 0 else ints[s, 3]
         sch = (method, scheme[1], scheme[2], scheme[3])
-        # 1. ghost zones of the input state, axes z, y, x
-        for back in range(3):
-            gaxis = 2 - back
-            for item in prange(ghost_items(gaxis, lay, bc)):
-                fill_ghost_item(src, gaxis, item, t_stage, lay, sp, bc)
+        # 1. ghost zones of the input state
+        fill_ghosts(src, t_stage, lay, sp, bc)
         # 2. one sweep per active axis; the first one writes base, sources and ext
         first = True
+        first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
+        y_source = np.zeros(pencil_count(first_axis, lay))
         for axis in range(3):
             n_axis = nx if axis == 0 else (ny if axis == 1 else nz)
             if n_axis == 1:
@@ -141,20 +140,16 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
             store = shearing and axis == 0
             for c in prange(nchunk):
                 sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext,
-                              bflux, store, c * npen // nchunk, (c + 1) * npen // nchunk)
+                              bflux, store, y_source, c * npen // nchunk, (c + 1) * npen // nchunk)
             first = False
         # 3. radial fluxes of a shearing box; budget
         if shearing:
             mass_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, work)
             budget[0] += weight * dt * mass_flux * sp.dy * sp.dz
-        if st.coriolis_y != 0.0:
-            part = np.zeros(rows)
-            for r in prange(rows):
-                part[r] = row_component_sum(src, 1, r, lay)
-            total = 0.0
-            for r in range(rows):
-                total += part[r]
-            budget[1] -= weight * dt * st.coriolis_y * total * dvol
+        total = 0.0
+        for p in range(y_source.shape[0]):
+            total += y_source[p]
+        budget[1] += weight * dt * total * dvol
     if not finish:
         return 0.0, -1
     u = states[0]

@@ -50,7 +50,7 @@ def pencil_count(axis: int, lay) -> int:
 
 @njit(cache=True, error_model="numpy")
 def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc, zc, ext, use_ext, bflux,
-                  store_bflux, p0, p1):
+                  store_bflux, y_source, p0, p1):
     """Add the flux differences along ``axis`` of ``src`` to ``dst`` for pencils ``p0 .. p1-1``.
 
     Parameters
@@ -77,6 +77,9 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
     bflux, store_bflux
         ``(2, 4, nz, ny)``: if ``store_bflux`` (x sweeps only), the fluxes through the inner
         and outer x faces are stored for the shear-periodic flux correction.
+    y_source
+        ``(npencil,)``: in the first sweep, each pencil's sum of the y-momentum source of the
+        shearing box (without ``ext``), for the momentum budget.
     p0, p1
         Range of pencils; pencil ``p`` has transverse domain indices ``(p % na, p // na)``
         (``(j, k)`` for x, ``(i, k)`` for y, ``(i, j)`` for z).
@@ -198,8 +201,10 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
         u_x = S[1, first_cell:last:stride]
         u_y = S[2, first_cell:last:stride]
         u_z = S[3, first_cell:last:stride]
+        ysum = 0.0
         for i in range(n):
             sx, sy, sz = momentum_source(rho_c[i], vx[i], vy[i], xs[i], zs[i], st)
+            ysum += sy
             sx += ext_x[i]
             sy += ext_y[i]
             sz += ext_z[i]
@@ -207,3 +212,4 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
             d_x[i] = a * b_x[i] + b * u_x[i] + dt * sx - dtdx * (f_x[i + 1] - f_x[i])
             d_y[i] = a * b_y[i] + b * u_y[i] + dt * sy - dtdx * (f_y[i + 1] - f_y[i])
             d_z[i] = a * b_z[i] + b * u_z[i] + dt * sz - dtdx * (f_z[i + 1] - f_z[i])
+        y_source[p] = ysum
