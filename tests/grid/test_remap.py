@@ -8,8 +8,8 @@ from dustygas.grid.remap import shift_column
 
 
 def shifted(a, s, method):
-    out, phi = np.empty_like(a), np.empty_like(a)
-    shift_column(a, a.size, s, RECONSTRUCTIONS[method], 2, out, phi)
+    out, work = np.empty_like(a), np.empty(4 * a.size + 19)
+    shift_column(a, a.size, s, RECONSTRUCTIONS[method], 2, out, work)
     return out
 
 

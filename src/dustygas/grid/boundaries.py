@@ -167,14 +167,14 @@ def _shear_ghosts(u, item, t, lay, sp, bc):
     jump = bc.vy_jump if side == 0 else -bc.vy_jump
     col = np.empty(ny)
     out = np.empty((4, ny))
-    phi = np.empty(ny)
+    work = np.empty(4 * ny + 19)
     for m in range(g):
         dst = g - 1 - m if side == 0 else g + nx + m
         src = g - 1 - m + nx if side == 0 else g + m
         for v in range(4):
             for j in range(ny):
                 col[j] = u[v, k, gy + j, src]
-            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[v], phi)
+            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[v], work)
         for j in range(nyt):
             jj = (j - gy) % ny
             u[0, k, j, dst] = out[0, jj]
@@ -211,7 +211,7 @@ def fill_ghosts(u, t, lay, sp, bc) -> None:
 
 
 @njit(cache=True, error_model="numpy")
-def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, work) -> float:
+def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
     """Average the radial-face fluxes of a shear-periodic box with their remapped images.
 
     Parameters
@@ -223,8 +223,6 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, work) -> float:
         ``(2, 4, nz, ny)`` fluxes through the inner (0) and outer (1) radial faces, as applied.
     dtdx
         The ``dt / dx`` the fluxes were applied with.
-    work
-        ``(4, 4, ny)`` scratch.
 
     Returns
     -------
@@ -235,14 +233,14 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, work) -> float:
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     gx, gy, gz = lay.gx, lay.gy, lay.gz
     s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy if ny > 1 else 0.0
-    img_in = work[0]  # image of the outer flux on the inner face
-    img_out = work[1]
-    phi = work[2, 0]
+    img_in = np.empty((4, ny))  # image of the outer flux on the inner face
+    img_out = np.empty((4, ny))
+    work = np.empty(4 * ny + 19)
     total = 0.0
     for k in range(nz):
         for v in range(4):
-            shift_column(bflux[1, v, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[v], phi)
-            shift_column(bflux[0, v, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[v], phi)
+            shift_column(bflux[1, v, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[v], work)
+            shift_column(bflux[0, v, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[v], work)
         plane = 0.0
         for j in range(ny):
             img_in[2, j] += bc.vy_jump * img_in[0, j]

@@ -13,8 +13,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["row_signal_rate", "combine_rates", "max_signal_rate", "row_sums", "domain_sums", "row_component_sum",
-           "component_sum"]
+__all__ = ["row_signal_rate", "combine_rates", "max_signal_rate", "row_sums", "domain_sums"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -116,16 +115,23 @@ def row_sums(u, r, lay, xc, to_full, to_relative, out) -> None:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def domain_sums(u, lay, xc, to_full, to_relative) -> np.ndarray:
-    """:func:`row_sums` combined over rows (sums, maximum, minimum)."""
-    rows = lay.ny * lay.nz
-    part = np.zeros((rows, 7))
-    for r in prange(rows):
+def _row_sums_parallel(u, lay, xc, to_full, to_relative, part) -> None:
+    for r in prange(part.shape[0]):
         row_sums(u, r, lay, xc, to_full, to_relative, part[r])
+
+
+@njit(cache=True, error_model="numpy")
+def _row_sums_serial(u, lay, xc, to_full, to_relative, part) -> None:
+    for r in range(part.shape[0]):
+        row_sums(u, r, lay, xc, to_full, to_relative, part[r])
+
+
+@njit(cache=True, error_model="numpy")
+def _combine_sums(part) -> np.ndarray:
     out = np.zeros(7)
     out[5] = -np.inf
     out[6] = np.inf
-    for r in range(rows):
+    for r in range(part.shape[0]):
         for c in range(5):
             out[c] += part[r, c]
         out[5] = max(out[5], part[r, 5])
@@ -133,26 +139,13 @@ def domain_sums(u, lay, xc, to_full, to_relative) -> np.ndarray:
     return out
 
 
-@njit(cache=True, error_model="numpy")
-def row_component_sum(u, var, r, lay) -> float:
-    """Sum of conserved variable ``var`` over row ``r`` of domain cells."""
-    nx, ny, nz, gx, gy, gz = lay
-    j = r % ny
-    k = r // ny
-    acc = 0.0
-    for i in range(nx):
-        acc += u[var, gz + k, gy + j, gx + i]
-    return acc
+#: below this many cells the sums run on one thread (a parallel region costs more)
+PARALLEL_SUMS_CELLS = 1 << 17
 
 
-@njit(cache=True, parallel=True, error_model="numpy")
-def component_sum(u, var, lay) -> float:
-    """Sum of conserved variable ``var`` over the domain (rows combined in order)."""
-    rows = lay.ny * lay.nz
-    part = np.zeros(rows)
-    for r in prange(rows):
-        part[r] = row_component_sum(u, var, r, lay)
-    total = 0.0
-    for r in range(rows):
-        total += part[r]
-    return total
+def domain_sums(u, lay, xc, to_full, to_relative) -> np.ndarray:
+    """:func:`row_sums` combined over rows in a fixed order (sums, maximum, minimum)."""
+    part = np.empty((lay.ny * lay.nz, 7))
+    rows = _row_sums_parallel if lay.nx * lay.ny * lay.nz >= PARALLEL_SUMS_CELLS else _row_sums_serial
+    rows(u, lay, xc, to_full, to_relative, part)
+    return _combine_sums(part)

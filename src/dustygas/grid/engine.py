@@ -171,7 +171,6 @@ class GridEngine:
         nz, ny, nx = mesh.array_shape
         self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
         self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
-        self._work = np.zeros((4, 4, mesh.shape[1]))
         self._no_ext = np.zeros((3, 1, 1, 1))
         #: time integrals [mass through the radial boundary, y-momentum from the source terms]
         self.budget = np.zeros(2)
@@ -253,7 +252,7 @@ class GridEngine:
         rate, bad = advance_gas(
             self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
             self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate, self._no_ext, False,
-            self._bflux, self._work, self.budget, numba.get_num_threads(),
+            self._bflux, self.budget, numba.get_num_threads(),
         )
         self._check(rate, bad)
         self.t += dt
@@ -283,7 +282,7 @@ class GridEngine:
             rate, bad = advance_gas(
                 self.states, ints, reals, s, s + 1, s == nstage - 1, dt, self.t, self._layout, self._spacing,
                 self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-                ext if use else self._no_ext, use, self._bflux, self._work, self.budget, numba.get_num_threads(),
+                ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
             )
         self._check(rate, bad)
         self.t += dt

@@ -92,7 +92,7 @@ def integrator_tables(name: str) -> tuple[np.ndarray, np.ndarray]:
 
 @njit(cache=True, parallel=True, error_model="numpy")
 def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate,
-                ext, use_ext, bflux, work, budget, nthreads) -> tuple[float, int]:
+                ext, use_ext, bflux, budget, nthreads) -> tuple[float, int]:
     """Stages ``s_lo .. s_hi-1`` of the step from ``t`` to ``t + dt``, then (if ``finish``)
     orbital advection and the Courant rate of the new state.
 
@@ -144,7 +144,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
             first = False
         # 3. radial fluxes of a shearing box; budget
         if shearing:
-            mass_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, work)
+            mass_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc)
             budget[0] += weight * dt * mass_flux * sp.dy * sp.dz
         total = 0.0
         for p in range(y_source.shape[0]):

@@ -41,17 +41,18 @@ def remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, c0, c1) -> No
         return
     col = np.empty(ny)
     out = np.empty(ny)
-    phi = np.empty(ny)
+    work = np.empty(4 * ny + 19)
     for item in range(c0, c1):
         i = gx + item % nx
         k = gz + item // nx
         shift = -shear_rate * xc[i] * dt / sp.dy
         for v in range(4):
+            column = u[v, k, gy:gy + ny, i]  # a strided view: loop indices start at 0
             for j in range(ny):
-                col[j] = u[v, k, gy + j, i]
-            shift_column(col, ny, shift, method, limiter, out, phi)
+                col[j] = column[j]
+            shift_column(col, ny, shift, method, limiter, out, work)
             for j in range(ny):
-                u[v, k, gy + j, i] = out[j]
+                column[j] = out[j]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")

@@ -32,7 +32,7 @@ __all__ = ["shift_column"]
 
 
 @njit(cache=True, error_model="numpy")
-def shift_column(a, n: int, shift: float, method: int, limiter: int, out, phi) -> None:
+def shift_column(a, n: int, shift: float, method: int, limiter: int, out, work) -> None:
     """``out[j] = `` the periodic column ``a[0:n]`` moved by ``shift`` cells towards larger j.
 
     Parameters
@@ -45,41 +45,73 @@ def shift_column(a, n: int, shift: float, method: int, limiter: int, out, phi) -
         Reconstruction codes of :mod:`dustygas.grid.reconstruct`.
     out
         Output, ``out[0:n]`` written.
-    phi
-        Work array of length >= n (face transports).
+    work
+        Work array of length >= ``4 n + 19``.
     """
     whole = math.floor(shift)
     f = shift - whole
     m = int(whole) % n
     if f == 0.0 or n == 1:
-        for j in range(n):
-            out[(j + m) % n] = a[j]
+        head, tail = out[m:], a[n - m:]
+        for j in range(n - m):
+            head[j] = a[j]
+        for j in range(m):
+            out[j] = tail[j]
         return
+    # the column with three periodic ghosts per side: p[k] = a[(k - 3) mod n], k = 0 .. n + 5;
+    # cell c = -1 .. n - 1 sits at p[c + 3], the transport through its right face is phi[c + 1]
+    p = work[: n + 6]
+    slope = work[n + 6: 2 * n + 12]
+    face = work[2 * n + 12: 3 * n + 18]  # face[k]: between p[k - 1] and p[k]
+    phi = work[3 * n + 18: 4 * n + 19]
+    body = p[3:]
     for j in range(n):
-        a0 = a[j]
-        am = a[j - 1] if j > 0 else a[n - 1]
-        ap = a[j + 1] if j < n - 1 else a[0]
-        if method == DONOR:
-            phi[j] = f * a0
-        elif method == PLM:
-            phi[j] = f * (a0 + 0.5 * (1.0 - f) * limited_slope(a0 - am, ap - a0, limiter))
-        else:
-            amm = a[(j - 2) % n]
-            app = a[(j + 2) % n]
+        body[j] = a[j]
+    if n >= 3:
+        for j in range(3):
+            p[j] = a[n - 3 + j]
+            body[n + j] = a[j]
+    else:
+        for k in range(n + 6):
+            p[k] = a[(k - 3) % n]
+    # views so that loop indices start at 0 (see reconstruct.py)
+    pm, p0, pp = p[1:], p[2:], p[3:]
+    if method == DONOR:
+        for j in range(n + 1):
+            phi[j] = f * p0[j]
+    elif method == PLM:
+        for j in range(n + 1):
+            phi[j] = f * (p0[j] + 0.5 * (1.0 - f) * limited_slope(p0[j] - pm[j], pp[j] - p0[j], limiter))
+    else:
+        if method == PPM:
+            sl = slope[1:]
+            for j in range(n + 4):  # slopes of p[1 .. n + 4]
+                sl[j] = cw84_slope(p[j], pm[j], p0[j])
+            fa = face[2:]
+            s0 = slope[1:]
+            s1 = slope[2:]
+            for j in range(n + 3):  # faces 2 .. n + 4
+                fa[j] = 0.5 * (pm[j] + p0[j]) - (s1[j] - s0[j]) / 6.0
+        else:  # PPM_CS
+            fa = face[2:]
+            for j in range(n + 2):  # faces 2 .. n + 3
+                fa[j] = cs08_face(p[j], pm[j], p0[j], pp[j])
+        left = face[2:]
+        right = face[3:]
+        p1, p2 = p[4:], p[0:]
+        for j in range(n + 1):  # cell at p[j + 2]
+            a0 = p0[j]
+            al, ar = left[j], right[j]
             if method == PPM:
-                sm = cw84_slope(amm, am, a0)
-                s0 = cw84_slope(am, a0, ap)
-                sp = cw84_slope(a0, ap, app)
-                al = 0.5 * (am + a0) - (s0 - sm) / 6.0
-                ar = 0.5 * (a0 + ap) - (sp - s0) / 6.0
                 al, ar = cw84_monotone(a0, al, ar)
-            else:  # PPM_CS
-                al = cs08_face(amm, am, a0, ap)
-                ar = cs08_face(am, a0, ap, app)
-                al, ar = cs08_parabola(amm, am, a0, ap, app, al, ar)
+            else:
+                al, ar = cs08_parabola(p2[j], pm[j], a0, pp[j], p1[j], al, ar)
             da = ar - al
             a6 = 6.0 * (a0 - 0.5 * (al + ar))
             phi[j] = f * (ar - 0.5 * f * (da - (1.0 - 2.0 * f / 3.0) * a6))
-    for j in range(n):
-        left = phi[j - 1] if j > 0 else phi[n - 1]
-        out[(j + m) % n] = a[j] - phi[j] + left
+    head, right_face = out[m:], phi[1:]
+    for j in range(n - m):
+        head[j] = a[j] - right_face[j] + phi[j]
+    tail_a, tail_l, tail_r = a[n - m:], phi[n - m:], phi[n - m + 1:]
+    for j in range(m):
+        out[j] = tail_a[j] - tail_r[j] + tail_l[j]
