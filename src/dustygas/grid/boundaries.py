@@ -45,7 +45,7 @@ from .shearing_box import shear_offset
 
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "BOUNDARY_KINDS",
-    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_items", "fill_ghost_item", "correct_radial_fluxes",
+    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_fluxes",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING = 0, 1, 2, 3
@@ -114,12 +114,71 @@ def _source_index(kind: int, lower: bool, m: int, n: int, g: int) -> int:
 
 
 @njit(cache=True, error_model="numpy")
-def ghost_items(axis: int, lay, bc) -> int:
-    """Number of independent work items of the ghost fill along ``axis`` (0 if inactive).
+def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
+    """Copy-type kinds (periodic, outflow, reflecting) along ``axis`` for lines ``l0 .. l1-1``
+    (rows j for z, planes k for y and x), over the full extent of the other axes."""
+    nyt, nxt = u.shape[2], u.shape[3]
+    flip = 1 + axis  # momentum component normal to this axis
+    for side in range(2):
+        kind = kind_lo if side == 0 else kind_hi
+        for m in range(g):
+            dst = g - 1 - m if side == 0 else g + n + m
+            src = _source_index(kind, side == 0, m, n, g)
+            for v in range(4):
+                sign = -1.0 if (kind == REFLECTING and v == flip) else 1.0
+                for line in range(l0, l1):
+                    if axis == 0:  # short strided lines: index directly
+                        for j in range(nyt):
+                            u[v, line, j, dst] = sign * u[v, line, j, src]
+                        continue
+                    # views of a ghost row and its source row (indices from 0: no wraparound)
+                    if axis == 2:
+                        to, frm = u[v, dst, line, :], u[v, src, line, :]
+                    else:
+                        to, frm = u[v, line, dst, :], u[v, line, src, :]
+                    for i in range(nxt):
+                        to[i] = sign * frm[i]
 
-    z: one item per row ``j``; y: one per plane ``k``; x: one per plane ``k``, or one per
-    (side, plane) for shear-periodic boundaries.
-    """
+
+@njit(cache=True, error_model="numpy")
+def _shear_ghosts(u, item, t, lay, sp, bc, col, out, work):
+    """Radial ghosts of a shearing box (one side, one plane): periodic in x, shifted in y."""
+    nx, ny, g, gy = lay.nx, lay.ny, lay.gx, lay.gy
+    nyt = u.shape[2]
+    side = item % 2
+    k = item // 2
+    jump = bc.vy_jump if side == 0 else -bc.vy_jump
+    if ny == 1:  # radial-vertical plane: no azimuthal shift, only the velocity jump
+        for m in range(g):
+            dst = g - 1 - m if side == 0 else g + nx + m
+            src = g - 1 - m + nx if side == 0 else g + m
+            u[0, k, 0, dst] = u[0, k, 0, src]
+            u[1, k, 0, dst] = u[1, k, 0, src]
+            u[2, k, 0, dst] = u[2, k, 0, src] + jump * u[0, k, 0, src]
+            u[3, k, 0, dst] = u[3, k, 0, src]
+        return
+    s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy
+    shift = s if side == 0 else -s
+    for m in range(g):
+        dst = g - 1 - m if side == 0 else g + nx + m
+        src = g - 1 - m + nx if side == 0 else g + m
+        for v in range(4):
+            column = u[v, k, gy:gy + ny, src]
+            for j in range(ny):
+                col[j] = column[j]
+            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[v], work)
+        for j in range(nyt):
+            jj = (j - gy) % ny
+            u[0, k, j, dst] = out[0, jj]
+            u[1, k, j, dst] = out[1, jj]
+            u[2, k, j, dst] = out[2, jj] + jump * out[0, jj]
+            u[3, k, j, dst] = out[3, jj]
+
+
+@njit(cache=True, error_model="numpy")
+def ghost_lines(axis: int, lay, bc) -> int:
+    """Number of independent work items of the ghost fill along ``axis`` (0 if inactive):
+    rows j for z, planes k for y and x, (side, plane) pairs for shear-periodic x."""
     NY = lay.ny + 2 * lay.gy
     NZ = lay.nz + 2 * lay.gz
     if axis == 2:
@@ -132,68 +191,24 @@ def ghost_items(axis: int, lay, bc) -> int:
 
 
 @njit(cache=True, error_model="numpy")
-def _copy_ghosts(u, axis, item, n, g, kind_lo, kind_hi):
-    """Copy-type kinds (periodic, outflow, reflecting) for one row/plane of ghosts."""
-    nx = u.shape[3]
-    ny = u.shape[2]
-    flip = 1 + axis  # momentum component normal to this axis
-    for side in range(2):
-        kind = kind_lo if side == 0 else kind_hi
-        for m in range(g):
-            dst = g - 1 - m if side == 0 else g + n + m
-            src = _source_index(kind, side == 0, m, n, g)
-            for v in range(4):
-                sign = -1.0 if (kind == REFLECTING and v == flip) else 1.0
-                if axis == 2:  # item = j
-                    for i in range(nx):
-                        u[v, dst, item, i] = sign * u[v, src, item, i]
-                elif axis == 1:  # item = k
-                    for i in range(nx):
-                        u[v, item, dst, i] = sign * u[v, item, src, i]
-                else:  # item = k
-                    for j in range(ny):
-                        u[v, item, j, dst] = sign * u[v, item, j, src]
+def fill_ghost_lines(u, axis, l0, l1, t, lay, sp, bc) -> None:
+    """Items ``l0 .. l1-1`` (see :func:`ghost_lines`) of the ghost fill along ``axis``.
 
-
-@njit(cache=True, error_model="numpy")
-def _shear_ghosts(u, item, t, lay, sp, bc):
-    """Radial ghosts of a shearing box (one side, one plane): periodic in x, shifted in y."""
-    nx, ny, g, gy = lay.nx, lay.ny, lay.gx, lay.gy
-    nyt = u.shape[2]
-    side = item % 2
-    k = item // 2
-    s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy if ny > 1 else 0.0
-    shift = s if side == 0 else -s
-    jump = bc.vy_jump if side == 0 else -bc.vy_jump
-    col = np.empty(ny)
-    out = np.empty((4, ny))
-    work = np.empty(4 * ny + 19)
-    for m in range(g):
-        dst = g - 1 - m if side == 0 else g + nx + m
-        src = g - 1 - m + nx if side == 0 else g + m
-        for v in range(4):
-            for j in range(ny):
-                col[j] = u[v, k, gy + j, src]
-            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[v], work)
-        for j in range(nyt):
-            jj = (j - gy) % ny
-            u[0, k, j, dst] = out[0, jj]
-            u[1, k, j, dst] = out[1, jj]
-            u[2, k, j, dst] = out[2, jj] + jump * out[0, jj]
-            u[3, k, j, dst] = out[3, jj]
-
-
-@njit(cache=True, error_model="numpy")
-def fill_ghost_item(u, axis, item, t, lay, sp, bc) -> None:
-    """Work item ``item`` (see :func:`ghost_items`) of the ghost fill along ``axis``."""
+    All items of an axis are independent; the axes must be done in the order z, y, x.
+    """
     if axis == 2:
-        _copy_ghosts(u, 2, item, lay.nz, lay.gz, bc.z_lo, bc.z_hi)
+        _copy_ghosts(u, 2, lay.nz, lay.gz, bc.z_lo, bc.z_hi, l0, l1)
     elif axis == 1:
-        _copy_ghosts(u, 1, item, lay.ny, lay.gy, bc.y_lo, bc.y_hi)
-    elif bc.x_lo == SHEAR_PERIODIC:
-        _shear_ghosts(u, item, t, lay, sp, bc)
+        _copy_ghosts(u, 1, lay.ny, lay.gy, bc.y_lo, bc.y_hi, l0, l1)
+    elif bc.x_lo != SHEAR_PERIODIC:
+        _copy_ghosts(u, 0, lay.nx, lay.gx, bc.x_lo, bc.x_hi, l0, l1)
     else:
-        _copy_ghosts(u, 0, item, lay.nx, lay.gx, bc.x_lo, bc.x_hi)
+        ny = lay.ny
+        col = np.empty(ny)
+        out = np.empty((4, ny))
+        work = np.empty(4 * ny + 19)
+        for item in range(l0, l1):
+            _shear_ghosts(u, item, t, lay, sp, bc, col, out, work)
 
 
 @njit(cache=True, error_model="numpy")
@@ -201,13 +216,12 @@ def fill_ghosts(u, t, lay, sp, bc) -> None:
     """Fill every ghost cell of the state ``u[4, NZ, NY, NX]`` at time ``t`` (see module doc).
 
     Axes in the order z, y, x, each over the full extent of the others (edges and corners).
-    Serial: the ghost zones hold a few per cent of the cells, and a parallel region costs
-    more than it saves below ~10^6 cells (the items are independent if that ever changes).
+    This is the serial version; the integrator spreads the items of each axis over threads
+    for large (3D) blocks.
     """
-    for a in range(3):
-        axis = 2 - a
-        for item in range(ghost_items(axis, lay, bc)):
-            fill_ghost_item(u, axis, item, t, lay, sp, bc)
+    for back in range(3):
+        axis = 2 - back
+        fill_ghost_lines(u, axis, 0, ghost_lines(axis, lay, bc), t, lay, sp, bc)
 
 
 @njit(cache=True, error_model="numpy")
@@ -239,8 +253,12 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
     total = 0.0
     for k in range(nz):
         for v in range(4):
-            shift_column(bflux[1, v, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[v], work)
-            shift_column(bflux[0, v, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[v], work)
+            if ny == 1:  # no azimuthal shift
+                img_in[v, 0] = bflux[1, v, k, 0]
+                img_out[v, 0] = bflux[0, v, k, 0]
+            else:
+                shift_column(bflux[1, v, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[v], work)
+                shift_column(bflux[0, v, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[v], work)
         plane = 0.0
         for j in range(ny):
             img_in[2, j] += bc.vy_jump * img_in[0, j]
