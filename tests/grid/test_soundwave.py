@@ -12,7 +12,8 @@ Measured (one thread, this machine):
     1D   PPM-CS/RK3 32..256: 2.12e-4, 1.57e-5, 1.47e-6, 1.65e-7     fitted order 3.44
     2D   PLM/VL2 32..256 (k along the diagonal): orders 2.08, 1.94, 1.99, fitted 2.00
     2D   PPM-CS/RK3 32..256: orders 3.23, 3.07, 3.02, fitted 3.10
-    3D   PLM/VL2 16..128 (k along (1,1,1), 9 to 74 cells per wavelength, cfl 0.3): fitted 2.2
+    3D   PLM/VL2 16..128 (k along (1,1,1), 9 to 74 cells per wavelength, cfl 0.3): orders
+         2.29, 2.13, 1.94, fitted 2.12
     3D   PPM-CS/RK3 16..64: orders 3.69, 3.35, fitted 3.52
 PPM here is ``ppm-cs`` (Colella & Sekora 2008 limiter) with RK3: the classic CW84 limiter
 clips smooth extrema and VL2 is second order in time, so either caps the order near 2.

@@ -45,7 +45,8 @@ from .shearing_box import shear_offset
 
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "BOUNDARY_KINDS",
-    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_fluxes",
+    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_planes",
+    "correct_radial_fluxes",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING = 0, 1, 2, 3
@@ -225,8 +226,9 @@ def fill_ghosts(u, t, lay, sp, bc) -> None:
 
 
 @njit(cache=True, error_model="numpy")
-def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
-    """Average the radial-face fluxes of a shear-periodic box with their remapped images.
+def correct_radial_planes(u, bflux, dtdx, t, lay, sp, bc, k0, k1, plane_flux) -> None:
+    """Average the radial-face fluxes of a shear-periodic box with their remapped images,
+    planes ``k0 .. k1-1`` (independent of each other).
 
     Parameters
     ----------
@@ -237,21 +239,17 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
         ``(2, 4, nz, ny)`` fluxes through the inner (0) and outer (1) radial faces, as applied.
     dtdx
         The ``dt / dx`` the fluxes were applied with.
-
-    Returns
-    -------
-    float
-        ``sum_{j,k} F_rho`` through the radial boundary after correction (outward positive),
-        per unit face area: multiply by ``dy dz dt`` for the mass that crossed it.
+    plane_flux
+        ``(nz,)`` output: each plane's ``sum_j F_rho`` through the radial boundary after the
+        correction (outward positive, per unit face area).
     """
-    nx, ny, nz = lay.nx, lay.ny, lay.nz
+    nx, ny = lay.nx, lay.ny
     gx, gy, gz = lay.gx, lay.gy, lay.gz
     s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy if ny > 1 else 0.0
     img_in = np.empty((4, ny))  # image of the outer flux on the inner face
     img_out = np.empty((4, ny))
     work = np.empty(4 * ny + 19)
-    total = 0.0
-    for k in range(nz):
+    for k in range(k0, k1):
         for v in range(4):
             if ny == 1:  # no azimuthal shift
                 img_in[v, 0] = bflux[1, v, k, 0]
@@ -272,5 +270,16 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
                 u[v, gz + k, gy + j, gx + nx - 1] -= dtdx * (new_out - f_out)
                 if v == 0:
                     plane += new_in
-        total += plane
+        plane_flux[k] = plane
+
+
+@njit(cache=True, error_model="numpy")
+def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
+    """:func:`correct_radial_planes` for every plane; returns ``sum_{j,k} F_rho`` after the
+    correction (multiply by ``dy dz dt`` for the mass that crossed the radial boundary)."""
+    plane_flux = np.zeros(lay.nz)
+    correct_radial_planes(u, bflux, dtdx, t, lay, sp, bc, 0, lay.nz, plane_flux)
+    total = 0.0
+    for k in range(lay.nz):
+        total += plane_flux[k]
     return total

@@ -33,11 +33,15 @@ def row_signal_rate(u, r, lay, sp, cs) -> tuple[float, int]:
     k = r // ny
     best = 0.0
     bad = -1
+    d_row = u[0, gz + k, gy + j, gx:gx + nx]  # views: loop indices from 0
+    x_row = u[1, gz + k, gy + j, gx:gx + nx]
+    y_row = u[2, gz + k, gy + j, gx:gx + nx]
+    z_row = u[3, gz + k, gy + j, gx:gx + nx]
     for i in range(nx):
-        rho = u[0, gz + k, gy + j, gx + i]
-        mx = u[1, gz + k, gy + j, gx + i]
-        my = u[2, gz + k, gy + j, gx + i]
-        mz = u[3, gz + k, gy + j, gx + i]
+        rho = d_row[i]
+        mx = x_row[i]
+        my = y_row[i]
+        mz = z_row[i]
         if not (rho > 0.0 and math.isfinite(rho) and math.isfinite(mx) and math.isfinite(my) and math.isfinite(mz)):
             if bad < 0:
                 bad = (k * ny + j) * nx + i

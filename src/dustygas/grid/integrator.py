@@ -48,7 +48,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghost_lines, ghost_lines
+from .boundaries import SHEAR_PERIODIC, correct_radial_planes, fill_ghost_lines, ghost_lines
 from .diagnostics import combine_rates, row_signal_rate
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
@@ -153,7 +153,17 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
             first = False
         # 3. radial fluxes of a shearing box; budget
         if shearing:
-            mass_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc)
+            plane_flux = np.zeros(nz)
+            if nz > 1:
+                nchunk = min(nz, nthreads)
+                for c in prange(nchunk):
+                    correct_radial_planes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, c * nz // nchunk,
+                                          (c + 1) * nz // nchunk, plane_flux)
+            else:
+                correct_radial_planes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, 0, 1, plane_flux)
+            mass_flux = 0.0
+            for k in range(nz):
+                mass_flux += plane_flux[k]
             budget[0] += weight * dt * mass_flux * sp.dy * sp.dz
         total = 0.0
         for p in range(y_source.shape[0]):
