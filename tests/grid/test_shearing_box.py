@@ -75,6 +75,7 @@ CASES = [
     ((16, 12, 8), (1.0, 2.0, 0.5), False, "plm", "hllc"),
     ((16, 12, 8), (1.0, 2.0, 0.5), True, "ppm", "hlle"),
     ((32, 1, 16), (1.0, 1.0, 0.5), False, "plm", "hlle"),  # radial-vertical plane
+    ((32, 1, 16), (1.0, 1.0, 0.5), True, "ppm", "hllc"),  # same, velocity relative to the shear
 ]
 
 

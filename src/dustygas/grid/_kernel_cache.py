@@ -3,8 +3,9 @@
 numba caches each compiled function next to its source file and checks only the timestamp of
 *that* file; a kernel inlines the functions it calls from other modules, so editing, say,
 ``riemann.py`` would leave a stale ``sweep_pencils`` in the cache. At import this module hashes
-the sources of the whole package and, when the hash changed, removes the package's cache
-files so that every kernel is recompiled once. It does nothing when the cache directory is
+the sources of the package's kernel modules (those that use numba, and ``mesh.py`` whose
+records the kernels receive) and, when the hash changed, removes the package's cache files
+so that every kernel is recompiled once. It does nothing when the cache directory is
 not the in-tree ``__pycache__`` (``NUMBA_CACHE_DIR`` set) or is not writable.
 """
 
@@ -23,8 +24,10 @@ def ensure_fresh_cache(package_dir: Path = _HERE) -> bool:
         return False
     digest = hashlib.sha1()
     for src in sorted(package_dir.glob("*.py")):
-        digest.update(src.name.encode())
-        digest.update(src.read_bytes())
+        text = src.read_bytes()
+        if b"numba" in text or src.name == "mesh.py":
+            digest.update(src.name.encode())
+            digest.update(text)
     stamp = digest.hexdigest()
     cache = package_dir / "__pycache__"
     marker = cache / "kernel-sources.sha1"

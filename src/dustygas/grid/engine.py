@@ -148,7 +148,8 @@ class GridEngine:
         self.cfl = float(cfl)
         self.scheme_names = dict(integrator=integrator, reconstruction=reconstruction, limiter=limiter, riemann=riemann)
         self.omega, self.q = float(omega), float(q)
-        self.orbital_advection = bool(orbital_advection) and mesh.active[1]
+        # velocities relative to the shear; the remap itself only acts if y is active
+        self.orbital_advection = bool(orbital_advection)
         self.shear_periodic = shear
         recon = RECONSTRUCTIONS[reconstruction]
         lim = LIMITERS[limiter]
@@ -156,16 +157,16 @@ class GridEngine:
         self._ints, self._reals = integrator_tables(integrator)
         self._layout = mesh.layout
         self._spacing = mesh.spacing
-        self._sources = source_terms(omega, q, bool(orbital_advection), vertical_gravity, eta_vK)
+        self._sources = source_terms(omega, q, self.orbital_advection, vertical_gravity, eta_vK)
         lx = mesh.size[0]
         self._bc = make_boundaries(
             tuple(boundaries), mesh.active, q * omega * lx,
-            shear_velocity_jump(q, omega, lx, bool(orbital_advection)), recon, lim,
+            shear_velocity_jump(q, omega, lx, self.orbital_advection), recon, lim,
         )
-        self._oa_rate = q * omega if self.orbital_advection else 0.0
+        self._oa_rate = q * omega if self.orbital_advection and mesh.active[1] else 0.0
         # v_y(full) = v_y(stored) - to_full x ;  v_y(relative to shear) = v_y(stored) + to_relative x
-        self._to_full = q * omega if orbital_advection else 0.0
-        self._to_relative = 0.0 if orbital_advection else q * omega
+        self._to_full = q * omega if self.orbital_advection else 0.0
+        self._to_relative = 0.0 if self.orbital_advection else q * omega
         self._xc = mesh.centers(0, ghosts=True)
         self._zc = mesh.centers(2, ghosts=True)
         nz, ny, nx = mesh.array_shape
