@@ -3,7 +3,7 @@
 A *pencil* is a line of cells along one axis, ghosts included. For each pencil the kernel
 gathers the primitive variables ``(rho, v_n, v_t1, v_t2)`` of the stage's input state into a
 small buffer, reconstructs face states, computes the fluxes of all faces, and adds the flux
-differences of its domain cells to the output state. Nothing of size of the mesh is
+differences of its domain cells to the output state. Nothing the size of the mesh is
 allocated and no face array is stored: the buffers live in L1 cache, one set per thread.
 Pencils are independent, so the integrator distributes them over threads (``prange`` over
 contiguous ranges of pencils) without races, and the result does not depend on the number
@@ -18,12 +18,12 @@ One *stage* of an integrator updates
     U_{out} = a\\,U_{base} + b\\,U_{in} + \\Delta t_{s}\\left[-\\sum_d
     \\frac{F_{d,+} - F_{d,-}}{\\Delta x_d}(U_{in}) + S(U_{in}) + S_{ext}\\right]
 
-with one call of :func:`sweep` per active axis. The first call (``first=True``) writes
-``a U_base + b U_in``, the source terms ``S`` of the shearing box (evaluated from the same
-primitive buffer, thesis eq. 4.2b) and the optional external momentum source ``S_ext``
-(back-reaction of particles, given per unit volume and time); the later calls add their flux
-differences. ``U_out`` may be the same array as ``U_base`` (in-place corrector); it must not
-be ``U_in``.
+with one call of :func:`sweep_pencils` per active axis (over all its pencils). The first
+call (``first=True``) writes ``a U_base + b U_in``, the source terms ``S`` of the shearing
+box (evaluated from the same primitive buffer, thesis eq. 4.2b) and the optional external
+momentum source ``S_ext`` (back-reaction of particles, given per unit volume and time); the
+later calls add their flux differences. ``U_out`` may be the same array as ``U_base``
+(in-place corrector); it must not be ``U_in``.
 """
 
 from __future__ import annotations
