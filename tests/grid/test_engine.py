@@ -52,21 +52,24 @@ def test_restart_from_checkpoint_is_bit_identical(tmp_path, problem, extra):
     _assert_identical(_outputs(tmp_path / "full"), _outputs(tmp_path / "part"))
 
 
-def _shearing_box(oa: bool, integrator: str = "vl2") -> GridEngine:
-    eng = GridEngine(Mesh((24, 20, 1), (1.0, 1.0, 1.0)), boundaries=("shear-periodic", "periodic", "periodic"),
-                     omega=1.0, orbital_advection=oa, reconstruction="ppm", riemann="hllc", integrator=integrator)
-    x, y, _ = eng.mesh.meshgrid()
-    eng.set_primitive(1 + 0.2 * np.sin(2 * np.pi * (x + y)), 0.1 * np.cos(2 * np.pi * y) + 0 * x,
-                      -1.5 * x + 0.05 * np.sin(2 * np.pi * x) + 0 * y, 0.0)
+def _shearing_box(oa: bool, integrator: str = "vl2", shape=(24, 20, 1)) -> GridEngine:
+    eng = GridEngine(Mesh(shape, (1.0, 1.0, 1.0)), boundaries=("shear-periodic", "periodic", "periodic"),
+                     omega=1.0, orbital_advection=oa, reconstruction="ppm", riemann="hllc", integrator=integrator,
+                     cfl=0.3)
+    x, y, z = eng.mesh.meshgrid()
+    eng.set_primitive(1 + 0.2 * np.sin(2 * np.pi * (x + y)) + 0 * z, 0.1 * np.cos(2 * np.pi * y) + 0 * x + 0 * z,
+                      -1.5 * x + 0.05 * np.sin(2 * np.pi * x) + 0 * y + 0.01 * np.cos(2 * np.pi * z), 0.0)
     return eng
 
 
-def test_results_do_not_depend_on_the_thread_count():
+@pytest.mark.parametrize("shape, oa", [((24, 20, 1), True), ((8, 128, 1), False), ((12, 10, 8), True)])
+def test_results_do_not_depend_on_the_thread_count(shape, oa):
+    # (8, 128, 1) and 3D take the parallel ghost-remap and flux-correction paths
     states = []
     for threads in (1, numba.config.NUMBA_NUM_THREADS):
         numba.set_num_threads(threads)
-        eng = _shearing_box(True)
-        for _ in range(20):
+        eng = _shearing_box(oa, shape=shape)
+        for _ in range(10):
             eng.advance(eng.timestep())
         states.append((eng.state.copy(), eng.budget.copy(), eng.history()))
     np.testing.assert_array_equal(states[0][0], states[1][0])

@@ -45,7 +45,7 @@ from .shearing_box import shear_offset
 
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "BOUNDARY_KINDS",
-    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_planes",
+    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
     "correct_radial_fluxes",
 ]
 
@@ -143,13 +143,14 @@ def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
 
 @njit(cache=True, error_model="numpy")
 def _shear_ghosts(u, item, t, lay, sp, bc, col, out, work):
-    """Radial ghosts of a shearing box (one side, one plane): periodic in x, shifted in y."""
+    """Radial ghosts of a shearing box: periodic in x, shifted in y (see :func:`ghost_lines`
+    for the items: (side, plane) if y is inactive, else (side, variable, plane))."""
     nx, ny, g, gy = lay.nx, lay.ny, lay.gx, lay.gy
     nyt = u.shape[2]
     side = item % 2
-    k = item // 2
     jump = bc.vy_jump if side == 0 else -bc.vy_jump
     if ny == 1:  # radial-vertical plane: no azimuthal shift, only the velocity jump
+        k = item // 2
         for m in range(g):
             dst = g - 1 - m if side == 0 else g + nx + m
             src = g - 1 - m + nx if side == 0 else g + m
@@ -158,28 +159,30 @@ def _shear_ghosts(u, item, t, lay, sp, bc, col, out, work):
             u[2, k, 0, dst] = u[2, k, 0, src] + jump * u[0, k, 0, src]
             u[3, k, 0, dst] = u[3, k, 0, src]
         return
+    v = (item // 2) % 4
+    k = item // 8
     s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy
     shift = s if side == 0 else -s
     for m in range(g):
         dst = g - 1 - m if side == 0 else g + nx + m
         src = g - 1 - m + nx if side == 0 else g + m
-        for v in range(4):
-            column = u[v, k, gy:gy + ny, src]
+        # the variable, and for rho v_y also rho (the velocity jump), remapped
+        for slot in range(2 if v == 2 else 1):
+            column = u[v if slot == 0 else 0, k, gy:gy + ny, src]
             for j in range(ny):
                 col[j] = column[j]
-            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[v], work)
+            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[slot], work)
+        ghost = u[v, k, :, dst]
         for j in range(nyt):
             jj = (j - gy) % ny
-            u[0, k, j, dst] = out[0, jj]
-            u[1, k, j, dst] = out[1, jj]
-            u[2, k, j, dst] = out[2, jj] + jump * out[0, jj]
-            u[3, k, j, dst] = out[3, jj]
+            ghost[j] = out[0, jj] + jump * out[1, jj] if v == 2 else out[0, jj]
 
 
 @njit(cache=True, error_model="numpy")
 def ghost_lines(axis: int, lay, bc) -> int:
     """Number of independent work items of the ghost fill along ``axis`` (0 if inactive):
-    rows j for z, planes k for y and x, (side, plane) pairs for shear-periodic x."""
+    rows j for z, planes k for y and x, and for shear-periodic x (side, plane) pairs when y
+    is inactive, else (side, variable, plane) triples."""
     NY = lay.ny + 2 * lay.gy
     NZ = lay.nz + 2 * lay.gz
     if axis == 2:
@@ -188,7 +191,9 @@ def ghost_lines(axis: int, lay, bc) -> int:
         return NZ if lay.gy > 0 else 0
     if lay.gx == 0:
         return 0
-    return 2 * NZ if bc.x_lo == SHEAR_PERIODIC else NZ
+    if bc.x_lo != SHEAR_PERIODIC:
+        return NZ
+    return 2 * NZ if lay.ny == 1 else 8 * NZ
 
 
 @njit(cache=True, error_model="numpy")
@@ -206,7 +211,7 @@ def fill_ghost_lines(u, axis, l0, l1, t, lay, sp, bc) -> None:
     else:
         ny = lay.ny
         col = np.empty(ny)
-        out = np.empty((4, ny))
+        out = np.empty((2, ny))
         work = np.empty(4 * ny + 19)
         for item in range(l0, l1):
             _shear_ghosts(u, item, t, lay, sp, bc, col, out, work)
@@ -226,9 +231,9 @@ def fill_ghosts(u, t, lay, sp, bc) -> None:
 
 
 @njit(cache=True, error_model="numpy")
-def correct_radial_planes(u, bflux, dtdx, t, lay, sp, bc, k0, k1, plane_flux) -> None:
-    """Average the radial-face fluxes of a shear-periodic box with their remapped images,
-    planes ``k0 .. k1-1`` (independent of each other).
+def correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, i0, i1, plane_flux) -> None:
+    """Average the radial-face fluxes of a shear-periodic box with their remapped images, for
+    items ``i0 .. i1-1``: item ``4 k + v`` is variable v of plane k (all independent).
 
     Parameters
     ----------
@@ -240,45 +245,52 @@ def correct_radial_planes(u, bflux, dtdx, t, lay, sp, bc, k0, k1, plane_flux) ->
     dtdx
         The ``dt / dx`` the fluxes were applied with.
     plane_flux
-        ``(nz,)`` output: each plane's ``sum_j F_rho`` through the radial boundary after the
-        correction (outward positive, per unit face area).
+        ``(nz,)`` output, written by the density items: each plane's ``sum_j F_rho`` through
+        the radial boundary after the correction (outward positive, per unit face area).
     """
     nx, ny = lay.nx, lay.ny
     gx, gy, gz = lay.gx, lay.gy, lay.gz
     s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy if ny > 1 else 0.0
-    img_in = np.empty((4, ny))  # image of the outer flux on the inner face
-    img_out = np.empty((4, ny))
+    img_in = np.empty((2, ny))  # image of the outer flux on the inner face (and of F_rho)
+    img_out = np.empty((2, ny))
     work = np.empty(4 * ny + 19)
-    for k in range(k0, k1):
-        for v in range(4):
+    for item in range(i0, i1):
+        k = item // 4
+        v = item % 4
+        for slot in range(2 if v == 2 else 1):
+            w = v if slot == 0 else 0
             if ny == 1:  # no azimuthal shift
-                img_in[v, 0] = bflux[1, v, k, 0]
-                img_out[v, 0] = bflux[0, v, k, 0]
+                img_in[slot, 0] = bflux[1, w, k, 0]
+                img_out[slot, 0] = bflux[0, w, k, 0]
             else:
-                shift_column(bflux[1, v, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[v], work)
-                shift_column(bflux[0, v, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[v], work)
+                shift_column(bflux[1, w, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[slot], work)
+                shift_column(bflux[0, w, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[slot], work)
+        inner = u[v, gz + k, gy:gy + ny, gx]
+        outer = u[v, gz + k, gy:gy + ny, gx + nx - 1]
+        f_in_line = bflux[0, v, k]
+        f_out_line = bflux[1, v, k]
         plane = 0.0
         for j in range(ny):
-            img_in[2, j] += bc.vy_jump * img_in[0, j]
-            img_out[2, j] -= bc.vy_jump * img_out[0, j]
-            for v in range(4):
-                f_in = bflux[0, v, k, j]
-                f_out = bflux[1, v, k, j]
-                new_in = 0.5 * (f_in + img_in[v, j])
-                new_out = 0.5 * (f_out + img_out[v, j])
-                u[v, gz + k, gy + j, gx] += dtdx * (new_in - f_in)
-                u[v, gz + k, gy + j, gx + nx - 1] -= dtdx * (new_out - f_out)
-                if v == 0:
-                    plane += new_in
-        plane_flux[k] = plane
+            g_in = img_in[0, j]
+            g_out = img_out[0, j]
+            if v == 2:  # v_y is larger by q Omega Lx in the inner image
+                g_in += bc.vy_jump * img_in[1, j]
+                g_out -= bc.vy_jump * img_out[1, j]
+            new_in = 0.5 * (f_in_line[j] + g_in)
+            new_out = 0.5 * (f_out_line[j] + g_out)
+            inner[j] += dtdx * (new_in - f_in_line[j])
+            outer[j] -= dtdx * (new_out - f_out_line[j])
+            plane += new_in
+        if v == 0:
+            plane_flux[k] = plane
 
 
 @njit(cache=True, error_model="numpy")
 def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
-    """:func:`correct_radial_planes` for every plane; returns ``sum_{j,k} F_rho`` after the
+    """:func:`correct_radial_items` for every item; returns ``sum_{j,k} F_rho`` after the
     correction (multiply by ``dy dz dt`` for the mass that crossed the radial boundary)."""
     plane_flux = np.zeros(lay.nz)
-    correct_radial_planes(u, bflux, dtdx, t, lay, sp, bc, 0, lay.nz, plane_flux)
+    correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, 0, 4 * lay.nz, plane_flux)
     total = 0.0
     for k in range(lay.nz):
         total += plane_flux[k]
