@@ -185,3 +185,25 @@ def test_cli_refuses_bad_input_without_writing(tmp_path, args, message):
     assert proc.returncode == 2
     assert message in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("shape, oa, bx", [((24, 20, 1), False, "shear-periodic"), ((24, 20, 1), True, "shear-periodic"),
+                                           ((16, 1, 12), False, "shear-periodic"), ((12, 10, 8), False, "periodic"),
+                                           ((32, 1, 1), False, "outflow")])
+def test_time_step_from_the_fused_reduction_equals_a_separate_pass(shape, oa, bx):
+    """The Courant rate is reduced inside the last sweep (or the remap) of a step; it must equal
+    a separate pass over the new state, which is what a restart computes."""
+    from dustygas.grid.diagnostics import max_signal_rate
+
+    eng = GridEngine(Mesh(shape, (1.0, 1.0, 1.0)), boundaries=(bx, "periodic", "periodic"), omega=1.0,
+                     orbital_advection=oa, cfl=0.3)
+    x, y, z = eng.mesh.meshgrid()
+    rng = np.random.default_rng(3)
+    full = tuple(reversed(shape))
+    eng.set_primitive(1 + 0.3 * rng.random(full), 0.5 * rng.standard_normal(full), -1.5 * x + rng.standard_normal(full),
+                      0.2 * rng.standard_normal(full))
+    for _ in range(3):
+        eng.advance(eng.timestep())
+        rate, bad = max_signal_rate(eng.state, eng.mesh.layout, eng.mesh.spacing, eng.cs)
+        assert bad == -1
+        assert eng.timestep() == eng.cfl / rate

@@ -13,20 +13,40 @@ import math
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["row_signal_rate", "combine_rates", "max_signal_rate", "row_sums", "domain_sums"]
+__all__ = ["cell_rate", "row_signal_rate", "combine_rates", "max_signal_rate", "row_sums", "domain_sums"]
 
 
 @njit(cache=True, error_model="numpy")
-def row_signal_rate(u, r, lay, sp, cs) -> tuple[float, int]:
-    """Largest ``max_d (|v_d| + c_s) / Delta x_d`` in row ``r``, and its first invalid cell.
+def cell_rate(rho: float, mx: float, my: float, mz: float, lay, sp, cs: float) -> float:
+    """``max_d (|v_d| + c_s) / Delta x_d`` over the active axes of one cell; -1 if invalid.
 
     The Courant-Friedrichs-Lewy condition (thesis eq. 2.12, ``Delta t <= Delta x / C`` for a
     signal speed C; eq. 2.13 with the sound speed, ``Delta t <= h / c_s``), applied to the
     fastest signal of the isothermal Euler equations along each active axis, ``|v_d| + c_s``,
-    gives ``Delta t = C_cfl / rate``; the per-cell maximum over axes is Athena's convention
-    (Stone et al. 2008), so Courant numbers compare directly. The invalid cell is the flat
-    domain index ``(k ny + j) nx + i`` of the first cell of the row with a non-positive or
-    non-finite density or a non-finite momentum (-1 if none).
+    gives ``Delta t = C_cfl / rate`` with the rate maximised over cells; the per-cell maximum
+    over axes is Athena's convention (Stone et al. 2008), so Courant numbers compare directly.
+    A cell is invalid if its density is not positive or any variable is not finite. Every
+    rate the engine uses comes from this function, wherever it is evaluated (a separate pass,
+    the last sweep of a step, the orbital-advection remap), so the time step is the same.
+    """
+    if not (rho > 0.0 and math.isfinite(rho) and math.isfinite(mx) and math.isfinite(my) and math.isfinite(mz)):
+        return -1.0
+    inv = 1.0 / rho
+    best = 0.0
+    if lay.nx > 1:
+        best = max(best, (abs(mx) * inv + cs) / sp.dx)
+    if lay.ny > 1:
+        best = max(best, (abs(my) * inv + cs) / sp.dy)
+    if lay.nz > 1:
+        best = max(best, (abs(mz) * inv + cs) / sp.dz)
+    return best
+
+
+@njit(cache=True, error_model="numpy")
+def row_signal_rate(u, r, lay, sp, cs) -> tuple[float, int]:
+    """Largest :func:`cell_rate` in row ``r`` of domain cells, and its first invalid cell.
+
+    The invalid cell is given as the flat domain index ``(k ny + j) nx + i`` (-1 if none).
     """
     nx, ny, nz, gx, gy, gz = lay
     j = r % ny
@@ -42,17 +62,12 @@ def row_signal_rate(u, r, lay, sp, cs) -> tuple[float, int]:
         mx = x_row[i]
         my = y_row[i]
         mz = z_row[i]
-        if not (rho > 0.0 and math.isfinite(rho) and math.isfinite(mx) and math.isfinite(my) and math.isfinite(mz)):
+        rate = cell_rate(rho, mx, my, mz, lay, sp, cs)
+        if rate < 0.0:
             if bad < 0:
                 bad = (k * ny + j) * nx + i
-            continue
-        inv = 1.0 / rho
-        if nx > 1:
-            best = max(best, (abs(mx) * inv + cs) / sp.dx)
-        if ny > 1:
-            best = max(best, (abs(my) * inv + cs) / sp.dy)
-        if nz > 1:
-            best = max(best, (abs(mz) * inv + cs) / sp.dz)
+        elif rate > best:
+            best = rate
     return best, bad
 
 

@@ -49,7 +49,7 @@ import numpy as np
 from numba import njit, prange
 
 from .boundaries import SHEAR_PERIODIC, correct_radial_items, fill_ghost_lines, ghost_lines
-from .diagnostics import combine_rates, row_signal_rate
+from .diagnostics import cell_rate, combine_rates
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
 from .sweep import pencil_count, sweep_pencils
@@ -115,9 +115,15 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         ``finish`` is False).
     """
     nx, ny, nz = lay.nx, lay.ny, lay.nz
-    rows = ny * nz
     dvol = sp.dx * sp.dy * sp.dz
     shearing = bc.x_lo == SHEAR_PERIODIC
+    remap = oa_rate != 0.0 and ny > 1
+    last_axis = 2 if nz > 1 else (1 if ny > 1 else 0)
+    # the Courant rate of the new state: per pencil of the step's last sweep (or per column of
+    # the orbital-advection remap), plus the radial edge cells after their flux correction
+    nrate = nx * nz if remap else pencil_count(last_axis, lay)
+    rates = np.zeros(nrate)
+    bads = np.full(nrate, -1, dtype=np.int64)
     for s in range(s_lo, s_hi):
         src = states[ints[s, 0]]
         dst = states[ints[s, 1]]
@@ -152,9 +158,11 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
             npen = pencil_count(axis, lay)
             nchunk = min(npen, nthreads)
             store = shearing and axis == 0
+            want_rate = finish and s == s_hi - 1 and axis == last_axis and not remap
             for c in prange(nchunk):
                 sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext,
-                              bflux, store, y_source, c * npen // nchunk, (c + 1) * npen // nchunk)
+                              bflux, store, y_source, rates, bads, want_rate, shearing,
+                              c * npen // nchunk, (c + 1) * npen // nchunk)
             first = False
         # 3. radial fluxes of a shearing box; budget
         if shearing:
@@ -178,14 +186,24 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     if not finish:
         return 0.0, -1
     u = states[0]
-    if oa_rate != 0.0 and ny > 1:
+    if remap:
         ncol = nx * nz
         nchunk = min(ncol, nthreads)
         for c in prange(nchunk):
-            remap_columns(u, dt, oa_rate, lay, sp, xc, scheme[0], scheme[1], c * ncol // nchunk,
+            remap_columns(u, dt, oa_rate, lay, sp, xc, scheme[0], scheme[1], scheme[3], rates, bads, c * ncol // nchunk,
                           (c + 1) * ncol // nchunk)
-    rates = np.zeros(rows)
-    bads = np.full(rows, -1, dtype=np.int64)
-    for r in prange(rows):
-        rates[r], bads[r] = row_signal_rate(u, r, lay, sp, scheme[3])
-    return combine_rates(rates, bads)
+        return combine_rates(rates, bads)
+    rate, bad = combine_rates(rates, bads)
+    if shearing:  # the radial edge cells, left out by the last sweep
+        for k in range(nz):
+            for j in range(ny):
+                for i in (0, nx - 1):
+                    kk, jj, ii = lay.gz + k, lay.gy + j, lay.gx + i
+                    r = cell_rate(u[0, kk, jj, ii], u[1, kk, jj, ii], u[2, kk, jj, ii], u[3, kk, jj, ii], lay, sp,
+                                  scheme[3])
+                    if r < 0.0:
+                        if bad < 0:
+                            bad = (k * ny + j) * nx + i
+                    elif r > rate:
+                        rate = r
+    return rate, bad

@@ -14,13 +14,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from .diagnostics import cell_rate, combine_rates
 from .remap import shift_column
 
 __all__ = ["orbital_advection", "remap_columns"]
 
 
 @njit(cache=True, error_model="numpy")
-def remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, c0, c1) -> None:
+def remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, cs, rates, bads, c0, c1) -> None:
     """Shift y-columns ``c0 .. c1-1`` of ``u`` (all four variables) by ``-shear_rate x dt``.
 
     Parameters
@@ -33,6 +34,12 @@ def remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, c0, c1) -> No
         Cell-centre x coordinates, ghosts included.
     method, limiter
         Reconstruction of the fractional shift.
+    cs
+        Sound speed (for the Courant rate).
+    rates, bads
+        ``(nx nz,)`` outputs: each column's largest Courant rate after the remap
+        (:func:`~dustygas.grid.diagnostics.cell_rate`) and its first invalid cell (flat domain
+        index, -1 if none).
     c0, c1
         Column range; column ``c`` is domain ``(i, k) = (c % nx, c // nx)``.
     """
@@ -53,12 +60,29 @@ def remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, c0, c1) -> No
             shift_column(col, ny, shift, method, limiter, out, work)
             for j in range(ny):
                 column[j] = out[j]
+        best = 0.0
+        bad = -1
+        d, mx, my, mz = u[0, k, gy:gy + ny, i], u[1, k, gy:gy + ny, i], u[2, k, gy:gy + ny, i], u[3, k, gy:gy + ny, i]
+        for j in range(ny):
+            rate = cell_rate(d[j], mx[j], my[j], mz[j], lay, sp, cs)
+            if rate < 0.0:
+                if bad < 0:
+                    bad = ((k - gz) * ny + j) * nx + (i - gx)
+            elif rate > best:
+                best = rate
+        rates[item] = best
+        bads[item] = bad
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def orbital_advection(u, dt, shear_rate, lay, sp, xc, method, limiter, nchunk) -> None:
-    """Advect ``u`` by the background shear for ``dt`` (all columns; see :func:`remap_columns`)."""
+def orbital_advection(u, dt, shear_rate, lay, sp, xc, method, limiter, cs, nchunk) -> tuple[float, int]:
+    """Advect ``u`` by the background shear for ``dt`` (all columns; see :func:`remap_columns`);
+    returns the largest Courant rate of the result and its first invalid cell."""
     ncol = lay.nx * lay.nz
+    rates = np.zeros(ncol)
+    bads = np.full(ncol, -1, dtype=np.int64)
     nchunk = min(ncol, nchunk)
     for c in prange(nchunk):
-        remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, c * ncol // nchunk, (c + 1) * ncol // nchunk)
+        remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, cs, rates, bads, c * ncol // nchunk,
+                      (c + 1) * ncol // nchunk)
+    return combine_rates(rates, bads)

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .diagnostics import cell_rate
 from .reconstruct import reconstruct_faces
 from .riemann import riemann_fluxes
 from .shearing_box import momentum_source
@@ -50,7 +51,7 @@ def pencil_count(axis: int, lay) -> int:
 
 @njit(cache=True, error_model="numpy")
 def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc, zc, ext, use_ext, bflux,
-                  store_bflux, y_source, p0, p1):
+                  store_bflux, y_source, rates, bads, want_rate, skip_radial_edges, p0, p1):
     """Add the flux differences along ``axis`` of ``src`` to ``dst`` for pencils ``p0 .. p1-1``.
 
     Parameters
@@ -80,6 +81,11 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
     y_source
         ``(npencil,)``: in the first sweep, each pencil's sum of the y-momentum source of the
         shearing box (without ``ext``), for the momentum budget.
+    rates, bads, want_rate, skip_radial_edges
+        ``(npencil,)``: if ``want_rate`` (the last sweep of a step), each pencil's largest
+        :func:`~dustygas.grid.diagnostics.cell_rate` of the values just written and its first
+        invalid cell (flat domain index, -1 if none), leaving out the first and last radial
+        cells if ``skip_radial_edges`` (a shear-periodic box corrects them afterwards).
     p0, p1
         Range of pencils; pencil ``p`` has transverse domain indices ``(p % na, p // na)``
         (``(j, k)`` for x, ``(i, k)`` for y, ``(i, j)`` for z).
@@ -166,6 +172,8 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
                 d_x[i] -= dtdx * (f_x[i + 1] - f_x[i])
                 d_y[i] -= dtdx * (f_y[i + 1] - f_y[i])
                 d_z[i] -= dtdx * (f_z[i + 1] - f_z[i])
+            if want_rate:
+                _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p)
             continue
         # first sweep: base, input and source terms too
         if axis == 0:
@@ -213,3 +221,34 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
             d_y[i] = a * b_y[i] + b * u_y[i] + dt * sy - dtdx * (f_y[i + 1] - f_y[i])
             d_z[i] = a * b_z[i] + b * u_z[i] + dt * sz - dtdx * (f_z[i + 1] - f_z[i])
         y_source[p] = ysum
+        if want_rate:
+            _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p)
+
+
+@njit(cache=True, error_model="numpy")
+def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p):
+    """Largest cell rate of the values just written along pencil ``p`` (see sweep_pencils)."""
+    nx, ny = lay.nx, lay.ny
+    n = d_rho.shape[0]
+    lo, hi = 0, n
+    if skip_radial_edges:
+        if axis == 0:
+            lo, hi = 1, n - 1
+        elif ia == 0 or ia == nx - 1:  # a radial boundary column (ia is the x index)
+            lo, hi = 0, 0
+    best = 0.0
+    bad = -1
+    for i in range(lo, hi):
+        rate = cell_rate(d_rho[i], d_x[i], d_y[i], d_z[i], lay, sp, cs)
+        if rate < 0.0:
+            if bad < 0:
+                if axis == 0:
+                    bad = (ib * ny + ia) * nx + i
+                elif axis == 1:
+                    bad = (ib * ny + i) * nx + ia
+                else:
+                    bad = (i * ny + ib) * nx + ia
+        elif rate > best:
+            best = rate
+    rates[p] = best
+    bads[p] = bad
