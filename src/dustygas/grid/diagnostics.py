@@ -25,20 +25,21 @@ def cell_rate(rho: float, mx: float, my: float, mz: float, lay, sp, cs: float) -
     fastest signal of the isothermal Euler equations along each active axis, ``|v_d| + c_s``,
     gives ``Delta t = C_cfl / rate`` with the rate maximised over cells; the per-cell maximum
     over axes is Athena's convention (Stone et al. 2008), so Courant numbers compare directly.
-    A cell is invalid if its density is not positive or any variable is not finite. Every
+    A cell is invalid if its density is not positive or any variable is not finite (or so
+    large that their sum overflows). Every
     rate the engine uses comes from this function, wherever it is evaluated (a separate pass,
     the last sweep of a step, the orbital-advection remap), so the time step is the same.
     """
-    if not (rho > 0.0 and math.isfinite(rho) and math.isfinite(mx) and math.isfinite(my) and math.isfinite(mz)):
+    if not (rho > 0.0 and math.isfinite(rho + mx + my + mz)):  # a NaN or inf anywhere spoils the sum
         return -1.0
     inv = 1.0 / rho
     best = 0.0
     if lay.nx > 1:
-        best = max(best, (abs(mx) * inv + cs) / sp.dx)
+        best = max(best, (abs(mx) * inv + cs) * (1.0 / sp.dx))
     if lay.ny > 1:
-        best = max(best, (abs(my) * inv + cs) / sp.dy)
+        best = max(best, (abs(my) * inv + cs) * (1.0 / sp.dy))
     if lay.nz > 1:
-        best = max(best, (abs(mz) * inv + cs) / sp.dz)
+        best = max(best, (abs(mz) * inv + cs) * (1.0 / sp.dz))
     return best
 
 
