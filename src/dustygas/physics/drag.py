@@ -14,8 +14,9 @@ Epstein regime (grain smaller than the gas mean free path)
 ----------------------------------------------------------
 A grain moving at :math:`\\Delta v \\ll c_s` through gas of density :math:`\\rho_g` and mean
 thermal speed :math:`v_{\\rm th} = \\sqrt{8/(\\pi\\gamma)}\\,c_s` feels the force
-:math:`F = -(4\\pi/3)\\rho_g s^2 v_{\\rm th}\\Delta v` (Epstein 1924; Weidenschilling 1977). Per unit volume, with :math:`n_d = \\rho_d/m` grains, the drag coefficient of the
-two-fluid equations (thesis eqs. 2.2, 2.5) and the stopping time of one grain are
+:math:`F = -(4\\pi/3)\\rho_g s^2 v_{\\rm th}\\Delta v` (Epstein 1924; Weidenschilling 1977).
+Per unit volume, with :math:`n_d = \\rho_d/m` grains, the drag coefficient of the two-fluid
+equations (thesis eqs. 2.2, 2.5) and the stopping time of one grain are
 
 .. math::
 
@@ -23,15 +24,15 @@ two-fluid equations (thesis eqs. 2.2, 2.5) and the stopping time of one grain ar
     t_s = \\frac{\\rho_d}{K} = \\frac{\\rho_{\\rm grain} s}{\\rho_g v_{\\rm th}}
         = \\sqrt{\\frac{\\pi\\gamma}{8}}\\,\\frac{\\rho_{\\rm grain} s}{\\rho_g c_s}
 
-(Laibe & Price 2012, MNRAS 420, 2345, eqs. 3-4 with the Epstein coefficient). **The thesis
+(Laibe & Price 2012, MNRAS 420, 2345). **The thesis
 prints** :math:`K = \\frac{4\\pi}{3}\\frac{\\rho_d\\rho_g}{\\rho_{\\rm grain}s}\\sqrt{8/(\\pi\\gamma)}\\,c_s`
 (eq. 2.3) and :math:`t_s = \\frac{3}{4\\pi}\\frac{\\rho_{\\rm grain}s}{\\rho_g c_s}\\sqrt{\\pi\\gamma/8}`
 (eq. 2.6). The factor :math:`4\\pi/3` is the one in the grain mass and in the force; it
 cancels between them (:math:`n_d F = \\rho_d F/m`), so it does not belong in :math:`K`. The
-printed forms also contradict the thesis's own drift size (eqs. 3.9-3.10: :math:`\\tau_s = 1`
-at :math:`s = \\rho_g c_s/(\\rho_{\\rm grain}\\Omega)`, which holds up to the
-:math:`\\sqrt{\\pi\\gamma/8}` factor only without the :math:`3/(4\\pi)`) and the growth-box
-solution of Vericel et al. (2021). We implement the standard result above.
+printed forms also contradict the thesis's own drift size (eqs. 3.9-3.10 put :math:`\\tau_s = 1`
+at :math:`s = \\rho_g c_s/(\\rho_{\\rm grain}\\Omega)`, which agrees with the Epstein law up to
+its :math:`\\sqrt{\\pi\\gamma/8}` factor but not with the printed :math:`3/(4\\pi)`) and the
+growth-box solution of Vericel et al. (2021). We implement the standard result above.
 
 Single grain versus mixture stopping time
 -----------------------------------------

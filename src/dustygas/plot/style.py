@@ -76,7 +76,7 @@ def house_style() -> Iterator[None]:
         yield
 
 
-def new_figure(nrows: int = 1, ncols: int = 1, width: float = 5.0, height: float = 3.6, **subplots_kw):
+def new_figure(nrows: int = 1, ncols: int = 1, width: float = 5.0, height: float = 3.6, **subplots_kw) -> tuple:
     """A :class:`~matplotlib.figure.Figure` (Agg, no pyplot) and its axes; size in inches."""
     from matplotlib.figure import Figure
 
