@@ -1,4 +1,4 @@
-"""Formulas of the thesis as pure, vectorised functions (no state, no imports of our engines).
+"""Formulas of the thesis as pure, vectorised functions (no state; imports only dustygas.units).
 
 Each function's docstring names the thesis equation and the paper it comes from, and states
 units: cgs for dimensional quantities, dimensionless where the thesis is. Engines and tests
