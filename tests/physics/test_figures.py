@@ -77,10 +77,14 @@ def test_epstein_unit_stokes_size_in_figure_matches_drag_law(tmp_path):
 
 
 def test_reproduce_command_writes_both_figures(tmp_path):
+    """The CLI writes the four files; Figure 3.5's peak is (sqrt(a^2+b^2)+a)/2 = 3.76880e-3
+    (a = 3.75e-5, b = 7.5e-3: f(tau*) = b/(2 tau*)), sampled on a 0.01-dex grid (rtol 1e-3)."""
     proc = cli("reproduce", "fig3.1", "fig3.5", "--output", "figs", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     names = sorted(p.name for p in (tmp_path / "figs").iterdir())
     assert names == ["fig3_1.csv", "fig3_1.png", "fig3_5.csv", "fig3_5.png"]
+    peak = read_table(tmp_path / "figs" / "fig3_5.csv")["minus_vr_over_vK"].max()
+    np.testing.assert_allclose(peak, (np.hypot(3.75e-5, 7.5e-3) + 3.75e-5) / 2, rtol=1e-3)
 
 
 def test_save_figure_round_trip_and_rejects_ragged_columns(tmp_path):
