@@ -104,10 +104,12 @@ def _full_state(vec: np.ndarray, p: StreamingParams) -> np.ndarray:
 
 
 def _normalise(state: np.ndarray) -> np.ndarray:
-    ref = state[4]
-    if abs(ref) <= 1e-300 * max(np.abs(state).max(), 1e-300):
-        ref = state[np.argmax(np.abs(state))]  # dust density not excited (e.g. mu = 0): largest entry
-    return state / ref
+    i = 4
+    if abs(state[i]) <= 1e-300 * max(np.abs(state).max(), 1e-300):
+        i = int(np.argmax(np.abs(state)))  # dust density not excited (e.g. mu = 0): largest entry
+    out = state / state[i]
+    out[i] = 1.0  # exactly
+    return out
 
 
 def _labelled(vec: np.ndarray, p: StreamingParams) -> dict[str, Any]:
