@@ -122,8 +122,8 @@ def test_incompressible_mode_is_divergence_free():
 
 
 def test_operator_reduces_to_gas_epicycles_without_dust():
-    """μ = 0: the gas modes are inertial-acoustic waves ω² = c²k² + κ²k_z²/k²... here with
-    Doppler shift k·U; checked for the k_z = 0 radial case ω = k_x U_x ± sqrt(c²k_x² + Ω²)."""
+    """μ = 0, k_z = 0: the gas carries Doppler-shifted density waves ω = k_x U_x ± (c_s²k_x² + κ²)^½
+    with epicyclic frequency κ = Ω (to 1e-12, relative)."""
     p = StreamingParams(taus=0.5, mu=0.0, kx=3.0, kz=0.0)
     w = eigenmodes(p).omega
     eq = nsh_velocities(0.5, 0.0)
