@@ -41,6 +41,11 @@ exp(i k·x) with k = (k_x, k_y, k_z) give, with c = c_s = 1/Π, μ_j = ρ_j0/ρ_
     t_s/(1+δρ_g) cancels the 1/(1+δρ_g) of the back-reaction, and puts δρ_g(V_j−U)/τ_j into
     the dust equation.
 
+A vertical drift V_zj is held steady by constant external forces (vertical gravity on the dust;
+on the gas, the part of the hydrostatic pressure gradient that balances the dust's drag). They
+are not perturbed, so the perturbations feel the drift through advection (k·V_j) and the
+density-weighted drag terms (δρ_j − γ δρ_g) V_zj; the gas has no background vertical velocity.
+
 The incompressible limit Π → 0 is taken exactly: δρ_g → 0 with c² δρ_g finite (a pressure that
 enforces k·u = 0). The gas velocity is then u = a_1 e_1 + a_2 e_2 on an orthonormal basis of
 the plane ⟂ k and the gas momentum equation is projected onto that plane; the state has
