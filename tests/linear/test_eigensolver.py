@@ -11,7 +11,6 @@ backward-error floor elsewhere. Independently of LAPACK, every eigenvalue is che
 """
 
 import numpy as np
-import pytest
 from scipy.optimize import linear_sum_assignment
 
 from dustygas.linear import StreamingParams, growth_rate, operator_matrix

@@ -39,17 +39,16 @@ Definitions used by the results:
 from __future__ import annotations
 
 import math
-import os
 from concurrent.futures import Executor
 from dataclasses import dataclass, field, replace
-from typing import Any, Sequence
+from typing import Any
 
 import numba
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import UserError
-from .modes import _labelled, eigenmodes
+from .modes import eigenmodes
 from .operator import DRAG_MODELS, StreamingParams, _plane_basis, fill_operator, state_labels
 
 __all__ = ["ShearingWave", "shearing_wave", "SweepResult", "sweep"]
