@@ -69,7 +69,7 @@ def main() -> None:
     print(f"numpy.linalg.eigvals batched 8x8: {numpy_rate:,.0f} /s (anchor {NUMPY_EIGVALS_ANCHOR:,.0f} /s)")
     for threads in (1, 2):
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-        rate, cpu = best_rate(lambda: growth_rate(taus, mu, kx, kz), n)
+        rate, cpu = best_rate(lambda: growth_rate(taus, mu, kx, kz), n, repeats=12)
         print(f"growth_rate, {threads} thread(s): {rate:,.0f} evaluations/s ({cpu * 1e6:.2f} CPU-us each) "
               f"= {rate / numpy_rate:.1f}x numpy "
               f"(same run), {rate / NUMPY_EIGVALS_ANCHOR:.1f}x the numbers.md anchor, "
