@@ -58,7 +58,7 @@ class ParticleSet:
             v3[:, : vel.shape[1]] = vel
 
         def full(v, dtype=np.float64):
-            return np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=dtype), (n,)))
+            return np.array(np.broadcast_to(np.asarray(v, dtype=dtype), (n,)), dtype=dtype)
 
         return cls(p3, v3, full(mass), full(h), full(u), full(alpha), full(ptype, np.int8),
                    np.arange(n, dtype=np.int64))
