@@ -55,7 +55,7 @@ class SPHKeplerRing(Problem):
             "ndim": Param(2, "2: a planar ring; 3: a ring with a few layers in z", choices=(2, 3)),
             "radius": Param(1.0, "ring radius R_0", "code length", min=0.0, min_open=True),
             "width": Param(0.2, "ring width w", "code length", min=0.0, min_open=True),
-            "rows": Param(16, "concentric rows across the ring", min=1),
+            "rows": Param(8, "concentric rows across the ring", min=1),
             "layers": Param(4, "rows in z (3D only)", min=1),
             "ring_mass": Param(1e-3, "total ring mass", "M_star", min=0.0, min_open=True),
             "cs": Param(0.02, "isothermal sound speed", "v_K(R_0)", min=0.0, min_open=True),
