@@ -47,7 +47,7 @@ from .forces import FORCE_FORMS, GASOLINE2, hydro_forces, pack_particles, packed
 from .integrator import drift_and_predict, kick
 from .kernels import KERNEL_NAMES, get_kernel
 from .neighbours import Box, NeighbourFinder
-from .particles import GAS, ParticleSet
+from .particles import GAS, ParticleSet, count_invalid
 from .timestep import courant_force_timestep
 from .viscosity import morris_monaghan_rate
 
@@ -103,7 +103,7 @@ class SPHOptions:
     c_force: float = 0.25
     h_tolerance: float = 1e-4
     h_max_iterations: int = 30
-    neighbour_buffer: float = 0.05
+    neighbour_buffer: float = 0.02
     fixed_dt: float = 0.0
 
     def __post_init__(self) -> None:
@@ -144,6 +144,7 @@ class SPHEngine:
         self.accreted_angular_momentum = np.zeros(3)
         self.last_neighbours = None
         self.h_iterations = 0
+        self.extra_searches = 0  # neighbour searches repeated because some h outgrew its table
         self._check_setup()
         box.wrap(particles.pos)
         self._allocate(len(particles))
@@ -194,6 +195,7 @@ class SPHEngine:
             grow = status == H_NEEDS_NEIGHBOURS
             if not grow.any():
                 break
+            self.extra_searches += 1
             h_search = np.where(grow, 1.5 * h_search, h_search)
         else:
             bad = np.flatnonzero(grow)
@@ -214,6 +216,8 @@ class SPHEngine:
 
     def _check_state(self, vel, u) -> None:
         p = self.particles
+        if count_invalid(p.pos, vel, u, p.ptype, self.eos.evolves_energy) == 0:
+            return
         bad = ~np.isfinite(p.pos).all(axis=1) | ~np.isfinite(vel).all(axis=1)
         if self.eos.evolves_energy:
             bad |= ~(u > 0) & (p.ptype == GAS)
@@ -269,6 +273,9 @@ class SPHEngine:
             self.last_neighbours = nl
         if self.external.active:
             self.external.add(p.pos, self.acc, self.phi)
+        if count_invalid(self.acc, self.acc, self.dudt, p.ptype, False) == 0:
+            self._valid = True
+            return
         bad = ~np.isfinite(self.acc).all(axis=1) | ~np.isfinite(self.dudt)
         if bad.any():
             idx = np.flatnonzero(bad)

@@ -19,11 +19,13 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, fields
 
 import numpy as np
+from numba import njit, prange
 
-__all__ = ["GAS", "DUST", "TEST", "ParticleSet"]
+__all__ = ["GAS", "DUST", "TEST", "ParticleSet", "count_invalid"]
 
 GAS = 0
 DUST = 1
@@ -92,3 +94,19 @@ class ParticleSet:
     @property
     def total_mass(self) -> float:
         return float(self.mass.sum())
+
+
+@njit(parallel=True, cache=True)
+def count_invalid(vec_a, vec_b, scalar, ptype, positive_gas_scalar):
+    """Number of particles with a non-finite component in ``vec_a``/``vec_b`` or ``scalar``
+    (or, with ``positive_gas_scalar``, a gas particle whose ``scalar`` is not > 0)."""
+    bad = 0
+    for a in prange(vec_a.shape[0]):
+        ok = math.isfinite(scalar[a])
+        for d in range(3):
+            ok = ok and math.isfinite(vec_a[a, d]) and math.isfinite(vec_b[a, d])
+        if positive_gas_scalar and ptype[a] == GAS:
+            ok = ok and scalar[a] > 0.0
+        if not ok:
+            bad += 1
+    return bad

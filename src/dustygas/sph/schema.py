@@ -34,7 +34,7 @@ SPH_SCHEMA: dict[str, Param] = {
     "h_tolerance": Param(1e-4, "relative tolerance of the smoothing-length iteration", min=0.0, max=0.1,
                          min_open=True),
     "h_max_iterations": Param(30, "iteration limit of the smoothing-length iteration", min=1),
-    "neighbour_buffer": Param(0.05, "relative margin on h of the neighbour tables", min=0.0, max=1.0),
+    "neighbour_buffer": Param(0.02, "relative margin on h of the neighbour tables", min=0.0, max=1.0),
     "fixed_dt": Param(0.0, "fixed time step (0: adaptive)", "code time", min=0.0),
 }
 
