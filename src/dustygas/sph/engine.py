@@ -37,6 +37,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
+import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
@@ -54,6 +55,9 @@ from .viscosity import morris_monaghan_rate
 __all__ = ["SPHOptions", "SPHEngine"]
 
 _DERIVED = ("rho", "omega", "P", "cs", "acc", "dudt", "divv", "vsig", "dalpha", "phi", "fcorr")
+#: particles per chunk handed to a thread: dynamic scheduling keeps both cores busy when the
+#: machine is shared (a descheduled thread does not hold up the loop); results are unaffected.
+PARALLEL_CHUNK = 256
 
 
 @dataclass(frozen=True)
@@ -234,6 +238,10 @@ class SPHEngine:
     def update_derivatives(self, vel: np.ndarray | None = None, u: np.ndarray | None = None,
                            alpha: np.ndarray | None = None) -> None:
         """Recompute h, densities, pressures and all time derivatives at the current positions."""
+        with numba.parallel_chunksize(PARALLEL_CHUNK):
+            self._update_derivatives(vel, u, alpha)
+
+    def _update_derivatives(self, vel, u, alpha) -> None:
         p, o, k = self.particles, self.options, self.kernel
         vel = p.vel if vel is None else vel
         u = p.u if u is None else u
@@ -301,6 +309,10 @@ class SPHEngine:
 
     def advance(self, dt: float) -> None:
         """One kick-drift-kick step of length ``dt`` (:mod:`dustygas.sph.integrator`)."""
+        with numba.parallel_chunksize(PARALLEL_CHUNK):
+            self._advance(dt)
+
+    def _advance(self, dt: float) -> None:
         self._ensure()
         p, o = self.particles, self.options
         lo, length, per = self._box_arrays
