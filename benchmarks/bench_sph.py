@@ -11,8 +11,8 @@ time-step criteria and the kicks and drift -- everything :meth:`SPHEngine.advanc
 :meth:`SPHEngine.timestep` do. Throughput is particle-updates per second = N x steps / wall.
 
 Anchors (Phantom v2026.0.1, gfortran -O3 -fopenmp, measured on this machine; see
-benchmarks/RESULTS.md for how): the same 32^3 box at 131k particle-updates/s on one thread and
-``PHANTOM_2T_32`` on two; 64^3 at ``PHANTOM_1T_64`` / ``PHANTOM_2T_64``.
+benchmarks/RESULTS.md for how): the same 32^3 box at 130k particle-updates/s on one thread and 267k on two;
+64^3 at 134k and 242k (``PHANTOM`` below).
 Targets (issue 6): >= 300k particle-updates/s per thread at 32^3; two threads >= 1.8x one;
 >= 2x Phantom per thread.
 
@@ -34,7 +34,7 @@ from dustygas.sph import Box, EquationOfState, ParticleSet, SPHEngine, SPHOption
 from dustygas.sph.lattice import cubic_lattice  # noqa: E402
 
 # Phantom, same box, particle-updates/s (benchmarks/RESULTS.md, 2026-11-22)
-PHANTOM = {(32, 1): 131_000.0, (32, 2): 245_000.0, (64, 1): 124_000.0, (64, 2): 236_000.0}
+PHANTOM = {(32, 1): 130_000.0, (32, 2): 267_000.0, (64, 1): 134_000.0, (64, 2): 242_000.0}
 TARGET_PER_THREAD = 300_000.0
 TARGET_SPEEDUP = 1.8
 TARGET_VS_PHANTOM = 2.0
@@ -50,42 +50,42 @@ def box_engine(n: int) -> SPHEngine:
                      SPHOptions(kernel="cubic", hfact=1.2))
 
 
-def throughput(n: int, threads: int, steps: int) -> tuple[float, float]:
-    """Best of three timings of ``steps`` steps; returns (particle-updates/s, seconds per step)."""
-    numba.set_num_threads(threads)
+def throughput(n: int, thread_counts: tuple[int, ...], steps: int, repeats: int = 9) -> dict[int, tuple[float, float]]:
+    """Particle-updates/s for each thread count: the best and the median of ``repeats`` timings of
+    ``steps`` steps, the thread counts interleaved so that they see the same machine (it is shared:
+    the best run is the least disturbed one)."""
     eng = box_engine(n)
-    for _ in range(2):  # compile, first neighbour tables
+    for threads in thread_counts:  # compile, first neighbour tables
+        numba.set_num_threads(threads)
         eng.advance(eng.timestep())
-    best = np.inf
-    for _ in range(3):
-        t0 = time.perf_counter()
-        for _ in range(steps):
-            eng.advance(eng.timestep())
-        best = min(best, time.perf_counter() - t0)
-    return n**3 * steps / best, best / steps
+    times: dict[int, list[float]] = {t: [] for t in thread_counts}
+    for _ in range(repeats):
+        for threads in thread_counts:
+            numba.set_num_threads(threads)
+            t0 = time.perf_counter()
+            for _ in range(steps):
+                eng.advance(eng.timestep())
+            times[threads].append(time.perf_counter() - t0)
+    return {t: (n**3 * steps / min(v), n**3 * steps / float(np.median(v))) for t, v in times.items()}
 
 
 def main(sizes: list[int]) -> None:
     print(f"load average (1 min) before: {os.getloadavg()[0]:.2f}; cores: {os.cpu_count()}; "
           f"numba threads available: {numba.config.NUMBA_NUM_THREADS}")
+    counts = tuple(t for t in (1, 2) if t <= numba.config.NUMBA_NUM_THREADS)
     for n in sizes:
-        steps = 10 if n <= 32 else 3
-        rates = {}
-        for threads in (1, 2):
-            if threads > numba.config.NUMBA_NUM_THREADS:
-                continue
-            rate, per_step = throughput(n, threads, steps)
-            rates[threads] = rate
+        rates = throughput(n, counts, 5 if n <= 32 else 1)
+        for threads, (best, median) in rates.items():
             anchor = PHANTOM.get((n, threads))
-            vs = f"{rate / anchor:.2f}x Phantom" if anchor else "no Phantom anchor"
-            print(f"{n}^3 box, {threads} thread(s): {rate:,.0f} particle-updates/s ({rate / threads:,.0f} per "
-                  f"thread; {per_step * 1e3:.1f} ms/step; {vs})")
-        if 1 in rates:
+            vs = f"{best / anchor:.2f}x Phantom" if anchor else "no Phantom anchor"
+            print(f"{n}^3 box, {threads} thread(s): best {best:,.0f} particle-updates/s, median {median:,.0f} "
+                  f"({best / threads:,.0f} per thread; {1e3 * n**3 / best:.1f} ms/step; {vs})")
+        if n == 32:
             print(f"  target >= {TARGET_PER_THREAD:,.0f}/s per thread at 32^3: "
-                  f"{'met' if rates[1] >= TARGET_PER_THREAD else 'NOT met'}")
+                  f"{'met' if rates[1][0] >= TARGET_PER_THREAD else 'NOT met'}")
         if 2 in rates:
-            sp = rates[2] / rates[1]
-            print(f"  two threads / one: {sp:.2f} (target >= {TARGET_SPEEDUP})")
+            print(f"  two threads / one: {rates[2][0] / rates[1][0]:.2f} best, {rates[2][1] / rates[1][1]:.2f} median "
+                  f"(target >= {TARGET_SPEEDUP})")
     print(f"load average (1 min) after: {os.getloadavg()[0]:.2f}")
 
 
