@@ -41,8 +41,8 @@ def test_exact_solver_sampling_conserves_mass_and_momentum():
 def test_sod_1d_l1_error(force, limit):
     """1D Sod, gamma = 5/3, 256 particles in -0.5 < x < 0 (Phantom's default resolution), cubic
     kernel, t = 0.2: mean |rho - rho_exact| over |x| < 0.5 is < 0.0055 (measured 0.0050 for both
-    forms; Phantom's 3D tube at that x-resolution: see benchmarks/RESULTS.md), velocity and
-    pressure errors < 0.009 and < 0.006."""
+    forms), velocity and pressure errors < 0.009 and < 0.006. (Phantom's 3D tube at 64 particles in
+    -0.5 < x < 0: L1(rho) = 0.0075, ours in the same tube 0.0067 -- benchmarks/RESULTS.md.)"""
     prob, cfg, eng = build("sph-sod", "problem.nx=256", f"sph.force={force}")
     advance_to(eng, cfg.run.tlim)
     err = l1_errors(eng, prob.solution(cfg))
@@ -62,7 +62,8 @@ def test_sod_1d_converges():
 @pytest.mark.slow
 def test_sod_3d_tube():
     """3D Sod in a close-packed tube (quintic kernel, 32 particles in -0.5 < x < 0, 8 rows across
-    the low-density side): density L1 < 0.0135 (measured 0.0126)."""
+    the low-density side): density L1 < 0.0135 (measured 0.0126; at 64 particles and Phantom's
+    tube width 0.0067, against Phantom's 0.0075 -- benchmarks/RESULTS.md)."""
     prob, cfg, eng = build("sph-sod-3d", "problem.nx=32")
     advance_to(eng, cfg.run.tlim)
     assert l1_errors(eng, prob.solution(cfg))["rho"] < 0.0135
