@@ -88,6 +88,8 @@ class SPHOptions:
         Relative tolerance and iteration limit of the smoothing-length iteration.
     neighbour_buffer
         Relative margin on :math:`h` with which neighbour tables are built.
+    neighbour_search
+        ``auto``, ``cells`` or ``tree`` (:class:`~dustygas.sph.neighbours.NeighbourFinder`).
     fixed_dt
         Use this time step instead of the criteria (0: adaptive).
     """
@@ -108,6 +110,7 @@ class SPHOptions:
     h_tolerance: float = 1e-4
     h_max_iterations: int = 30
     neighbour_buffer: float = 0.02
+    neighbour_search: str = "auto"
     fixed_dt: float = 0.0
 
     def __post_init__(self) -> None:
@@ -116,6 +119,7 @@ class SPHOptions:
             (self.force in FORCE_FORMS, f"force must be one of {', '.join(FORCE_FORMS)}"),
             (self.gasoline2_f in ("gradh", "wadsley"), "gasoline2_f must be gradh or wadsley"),
             (self.switch in ("none", "morris-monaghan"), "switch must be none or morris-monaghan"),
+            (self.neighbour_search in ("auto", "cells", "tree"), "neighbour_search must be auto, cells or tree"),
             (self.hfact >= 0 and self.h_tolerance > 0 and self.neighbour_buffer >= 0, "hfact, h_tolerance, "
              "neighbour_buffer must be positive"),
             (0 <= self.alpha_min <= self.alpha_max, "need 0 <= alpha_min <= alpha_max"),
@@ -139,7 +143,7 @@ class SPHEngine:
         self.external = external
         self.kernel = get_kernel(options.kernel, box.ndim)
         self.hfact = options.hfact or self.kernel.default_hfact
-        self.finder = NeighbourFinder(box, self.kernel.radius)
+        self.finder = NeighbourFinder(box, self.kernel.radius, method=options.neighbour_search)
         self._box_arrays = box.arrays()
         self.t = 0.0
         self.cycle = 0

@@ -15,8 +15,9 @@ order so that the inner loop streams contiguous memory, and each query scans the
 :math:`3^d` cells around its own. Periodic dimensions with at least three cells use a
 per-cell image shift; thinner periodic dimensions use a single cell and the minimum-image
 distance. The time per particle is independent of :math:`N` for quasi-uniform particle
-distributions; for strongly clustered ones (global disks) a tree would visit fewer candidates,
-and can be added behind the same :meth:`NeighbourFinder.find` signature.
+distributions; for strongly clustered ones (global disks) the k-d tree of
+:mod:`~dustygas.sph.kdtree` visits far fewer candidates, and :class:`NeighbourFinder` picks it
+automatically when the smoothing lengths spread by more than a factor four.
 
 Examples
 --------
@@ -294,7 +295,7 @@ def _gather_sorted(pos, h, order, spos, sh):
 
 
 class NeighbourFinder:
-    """Cell-list neighbour search for kernels of support ``radius`` (in units of h) in ``box``.
+    """Neighbour search for kernels of support ``radius`` (in units of h) in ``box``.
 
     Parameters
     ----------
@@ -302,12 +303,30 @@ class NeighbourFinder:
         Domain and boundary conditions.
     radius
         Kernel support radius :math:`R` (2 for M4 and the Wendlands, 3 for M6).
+    method
+        ``cells`` (uniform cell list), ``tree`` (:mod:`~dustygas.sph.kdtree`) or ``auto``
+        (:meth:`choose`, per call).
+    leaf_size
+        Particles per leaf of the tree.
     """
 
-    def __init__(self, box: Box, radius: float):
+    def __init__(self, box: Box, radius: float, method: str = "auto", leaf_size: int = 12):
+        if method not in ("auto", "cells", "tree"):
+            raise ValueError(f"unknown neighbour-search method {method!r}; choose auto, cells or tree")
         self.box = box
         self.radius = float(radius)
+        self.method = method
+        self.leaf_size = int(leaf_size)
         self._capacity = 32
+
+    def choose(self, h: np.ndarray) -> str:
+        """``cells`` for quasi-uniform smoothing lengths, ``tree`` when the largest h exceeds four
+        times the median (a cell list sized for the largest h would scan far too many particles)."""
+        if self.method != "auto":
+            return self.method
+        if h.size == 0:
+            return "cells"
+        return "tree" if float(h.max()) > 4.0 * float(np.median(h)) else "cells"
 
     def _grid(self, pos_list, hmax):
         lo, length, per = self.box.arrays()
@@ -352,6 +371,8 @@ class NeighbourFinder:
         same = query_pos is None
         qpos = pos if same else query_pos
         qh = h if same else query_h
+        if self.choose(h if same else np.concatenate([h, qh])) == "tree":
+            return self._find_tree(pos, h, qpos, qh, same)
         hmax = float(max(h.max(initial=0.0), qh.max(initial=0.0)))
         origin, inv_size, ncell, length, per = self._grid([pos] if same else [pos, qpos], hmax)
         start, sorder = _bin(pos, origin, inv_size, ncell, per)
@@ -370,6 +391,31 @@ class NeighbourFinder:
             if need <= self._capacity:
                 break
             self._capacity = int(need * 1.25) + 8
+        return self._finish(index, count, overlap, qpos, qh, qorder)
+
+    def _find_tree(self, pos, h, qpos, qh, same) -> NeighbourList:
+        from .kdtree import build_tree, tree_search
+
+        lo, length, per = self.box.arrays()
+        for d in range(self.box.ndim):
+            if per[d] and self.radius * max(h.max(initial=0.0), qh.max(initial=0.0)) > 0.5 * length[d]:
+                raise SimulationError(f"kernel support exceeds half the periodic box length along axis {d}")
+        stree = build_tree(pos, h, self.box.ndim, self.leaf_size)
+        qtree = stree if same else build_tree(qpos, qh, self.box.ndim, self.leaf_size)
+        nq = qpos.shape[0]
+        count = np.zeros(nq, np.int32)
+        overlap = np.empty(nq, np.int64)
+        while True:
+            index = np.empty((nq, self._capacity), np.int32)
+            tree_search(qpos, qh, qtree, pos, h, stree, length, per, self.radius, same, index, count, overlap)
+            need = int(count.max(initial=0))
+            if need <= self._capacity:
+                break
+            self._capacity = int(need * 1.25) + 8
+        return self._finish(index, count, overlap, qpos, qh, qtree[0])
+
+    @staticmethod
+    def _finish(index, count, overlap, qpos, qh, order) -> NeighbourList:
         bad = np.flatnonzero(overlap >= 0)
         if bad.size:
             a = int(bad[0])
@@ -377,4 +423,4 @@ class NeighbourFinder:
                 f"{bad.size} particles sit exactly on top of another (first: {a} and {int(overlap[a])})",
                 state={"overlapping": bad, "partner": overlap[bad], "position": qpos[bad]},
             )
-        return NeighbourList(index, count, np.array(qh, copy=True), qorder)
+        return NeighbourList(index, count, np.array(qh, copy=True), order)

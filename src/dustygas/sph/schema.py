@@ -35,6 +35,8 @@ SPH_SCHEMA: dict[str, Param] = {
                          min_open=True),
     "h_max_iterations": Param(30, "iteration limit of the smoothing-length iteration", min=1),
     "neighbour_buffer": Param(0.02, "relative margin on h of the neighbour tables", min=0.0, max=1.0),
+    "neighbour_search": Param("auto", "neighbour search: cell list, k-d tree, or chosen by the spread of h",
+                              choices=("auto", "cells", "tree")),
     "fixed_dt": Param(0.0, "fixed time step (0: adaptive)", "code time", min=0.0),
 }
 
