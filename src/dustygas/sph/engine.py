@@ -50,11 +50,11 @@ from .kernels import KERNEL_NAMES, get_kernel
 from .neighbours import Box, NeighbourFinder
 from .particles import GAS, ParticleSet, count_invalid
 from .timestep import courant_force_timestep
-from .viscosity import morris_monaghan_rate
+from .viscosity import cullen_dehnen_alpha, morris_monaghan_rate
 
 __all__ = ["SPHOptions", "SPHEngine"]
 
-_DERIVED = ("rho", "omega", "P", "cs", "acc", "dudt", "divv", "vsig", "dalpha", "phi", "fcorr")
+_DERIVED = ("rho", "omega", "P", "cs", "acc", "dudt", "divv", "curlv", "vsig", "dalpha", "phi", "fcorr")
 #: particles per chunk handed to a thread: dynamic scheduling keeps both cores busy when the
 #: machine is shared (a descheduled thread does not hold up the loop); results are unaffected.
 PARALLEL_CHUNK = 256
@@ -77,7 +77,8 @@ class SPHOptions:
     alpha, alpha_min, alpha_max, beta
         Artificial viscosity: initial (or constant) :math:`\\alpha`, switch bounds, :math:`\\beta`.
     switch
-        ``none`` (constant :math:`\\alpha`) or ``morris-monaghan``.
+        ``none`` (constant :math:`\\alpha`), ``morris-monaghan`` or ``cullen-dehnen``
+        (:mod:`~dustygas.sph.viscosity`).
     switch_decay
         :math:`\\sigma` of the switch's decay time :math:`h/(\\sigma c_s)`.
     alpha_u
@@ -118,7 +119,8 @@ class SPHOptions:
             (self.kernel in KERNEL_NAMES, f"kernel must be one of {', '.join(KERNEL_NAMES)}"),
             (self.force in FORCE_FORMS, f"force must be one of {', '.join(FORCE_FORMS)}"),
             (self.gasoline2_f in ("gradh", "wadsley"), "gasoline2_f must be gradh or wadsley"),
-            (self.switch in ("none", "morris-monaghan"), "switch must be none or morris-monaghan"),
+            (self.switch in ("none", "morris-monaghan", "cullen-dehnen"),
+             "switch must be none, morris-monaghan or cullen-dehnen"),
             (self.neighbour_search in ("auto", "cells", "tree"), "neighbour_search must be auto, cells or tree"),
             (self.hfact >= 0 and self.h_tolerance > 0 and self.neighbour_buffer >= 0, "hfact, h_tolerance, "
              "neighbour_buffer must be positive"),
@@ -274,7 +276,7 @@ class SPHEngine:
             pack_particles(pos_g, vel_g, mass_g, h_g, out["rho"], out["omega"], out["P"], out["cs"],
                            alpha_g, u_g, out["fcorr"], k.norm, k.ndim, form, packed)
             hydro_forces(packed, nl.index, nl.count, k.shape, k.radius, length, per, form, o.beta, o.alpha_u,
-                         self.eos.evolves_energy, out["acc"], out["dudt"], out["divv"], out["vsig"])
+                         self.eos.evolves_energy, out["acc"], out["dudt"], out["divv"], out["curlv"], out["vsig"])
             if self.evolves_alpha:
                 morris_monaghan_rate(alpha_g, out["divv"], h_g, out["cs"], o.alpha_min, o.alpha_max,
                                      o.switch_decay, out["dalpha"])
@@ -332,9 +334,15 @@ class SPHEngine:
         if gone.size:
             keep = np.setdiff1d(np.arange(len(p)), gone)
             self._accrete(gone)
+            p = self.particles
             vel_pred, u_pred, alpha_pred = vel_pred[keep], u_pred[keep], alpha_pred[keep]
+        divv_old = self.divv.copy() if o.switch == "cullen-dehnen" else None  # (after any accretion)
         self.update_derivatives(vel_pred, u_pred, alpha_pred)
         kick(p.vel, self.acc, p.u, self.dudt, p.alpha, self.dalpha, 0.5 * dt, eu, ea, o.alpha_min, o.alpha_max)
+        if divv_old is not None:
+            gas = p.ptype == GAS
+            cullen_dehnen_alpha(p.alpha, np.where(gas, self.divv, 0.0), np.where(gas, divv_old, 0.0),
+                                self.curlv, p.h, self.cs, dt, o.alpha_min, o.alpha_max, o.switch_decay)
         self.t += dt
         self.cycle += 1
 

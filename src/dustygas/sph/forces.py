@@ -30,8 +30,8 @@ bitwise-antisymmetric separations, so total momentum is conserved to round-off a
 :math:`\\sum_a m_a (v_a^2/2 + u_a)` is conserved exactly by the semi-discrete equations.
 
 Each particle gathers from its own neighbour row (no scatter, no atomics): the loop is parallel
-over particles and deterministic. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a`
-(Price 2012 eq. 84, used by the viscosity switch and to predict :math:`h`) and the largest pair
+over particles and deterministic. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|`
+(Price 2012 eqs. 84-85, used by the viscosity switches and to predict :math:`h`) and the largest pair
 signal speed (Courant condition, :mod:`dustygas.sph.timestep`). A new pairwise term (e.g. dust
 drag) is one more block inside the loop of :func:`hydro_forces` or a second loop of the same
 shape over another neighbour table.
@@ -88,10 +88,10 @@ def pack_particles(pos, vel, mass, h, rho, omega, P, cs, alpha, u, fcorr, norm, 
 
 @njit(parallel=True, cache=True)
 def hydro_forces(packed, index, count, shape, radius, length, periodic, form, beta, alpha_u,
-                 evolve_u, acc, dudt, divv, vsig):
-    """Hydrodynamic accelerations, :math:`du/dt`, :math:`\\nabla\\cdot v` and signal speeds.
+                 evolve_u, acc, dudt, divv, curlv, vsig):
+    """Hydrodynamic accelerations, :math:`du/dt`, :math:`\\nabla\\cdot v`, :math:`|\\nabla\\times v|` and signal speeds.
 
-    ``acc``, ``dudt``, ``divv`` and ``vsig`` are overwritten. ``alpha_u = 0`` switches the
+    ``acc``, ``dudt``, ``divv``, ``curlv`` and ``vsig`` are overwritten. ``alpha_u = 0`` switches the
     conductivity off; ``evolve_u = False`` skips the energy equation (isothermal gas).
     """
     n = packed.shape[0]
@@ -116,6 +116,9 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
         az = 0.0
         du = 0.0
         div = 0.0
+        cx = 0.0
+        cy = 0.0
+        cz = 0.0
         vs = cs_a
         for k in range(count[a]):
             b = index[a, k]
@@ -135,7 +138,10 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
             dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
             dW_b = pb[_GRADNORM] * kernel_dshape(shape, r * hinv_b)
             m_b = pb[_M]
-            vdotr = ((vxa - pb[_VX]) * dx + (vya - pb[_VY]) * dy + (vza - pb[_VZ]) * dz) * rinv
+            dvx = vxa - pb[_VX]
+            dvy = vya - pb[_VY]
+            dvz = vza - pb[_VZ]
+            vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
             # pressure
             if form == PRICE2012:
                 s = form_a * dW_a + pb[_FORM] * dW_b
@@ -158,6 +164,10 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
             ay -= s * dy
             az -= s * dz
             div += m_b * vdotr * dW_a
+            w = m_b * dW_a * rinv  # v_ab x grad_a W_ab(h_a), summed
+            cx += w * (dvy * dz - dvz * dy)
+            cy += w * (dvz * dx - dvx * dz)
+            cz += w * (dvx * dy - dvy * dx)
             v = signal_speed(cs_a, pb[_CS], vdotr, beta)
             vs = max(vs, v)
         acc[a, 0] = ax
@@ -165,6 +175,7 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
         acc[a, 2] = az
         dudt[a] = du if evolve_u else 0.0
         divv[a] = -ombar_a * div
+        curlv[a] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
         vsig[a] = vs
 
 

@@ -26,7 +26,7 @@ SPH_SCHEMA: dict[str, Param] = {
     "alpha_min": Param(0.1, "lower bound of the switched alpha", min=0.0),
     "alpha_max": Param(1.0, "upper bound of the switched alpha", min=0.0),
     "beta": Param(2.0, "quadratic (signal-velocity) viscosity coefficient", min=0.0),
-    "switch": Param("morris-monaghan", "viscosity switch", choices=("none", "morris-monaghan")),
+    "switch": Param("morris-monaghan", "viscosity switch", choices=("none", "morris-monaghan", "cullen-dehnen")),
     "switch_decay": Param(0.1, "sigma of the switch's decay time h/(sigma c_s)", min=0.0, min_open=True),
     "alpha_u": Param(1.0, "artificial conductivity coefficient (adiabatic gas)", min=0.0),
     "c_cour": Param(0.3, "Courant factor (thesis eq. 2.13)", min=0.0, max=1.0, min_open=True),
