@@ -30,6 +30,18 @@ def test_1d_adiabatic_wave_second_order():
     assert np.log2(errs[0] / errs[1]) > 1.9
 
 
+def test_2d_second_order():
+    """2D hexagonal lattice (quintic kernel, 8 rows), one period: 16 -> 32 -> 64 per wavelength
+    gives order > 1.9 each time (measured 1.94 and 2.03), error < 1 % at 64."""
+    errs = []
+    for nx in (16, 32, 64):
+        prob, cfg, eng = build("sph-soundwave-2d", f"problem.nx={nx}")
+        advance_to(eng, cfg.run.tlim)
+        errs.append(velocity_error(eng, cfg.problem.amplitude, cfg.problem.cs))
+    assert np.all(np.log2(np.array(errs[:-1]) / np.array(errs[1:])) > 1.9), errs
+    assert errs[-1] < 0.01
+
+
 def test_3d_second_order():
     """3D close-packed box (quintic kernel, 8x8 rows and layers across), one period: 16 -> 32
     particles per wavelength gives order p > 1.85 (measured 1.95), error < 2.5 % at 32."""
