@@ -91,6 +91,9 @@ class SPHOptions:
         Relative margin on :math:`h` with which neighbour tables are built.
     neighbour_search
         ``auto``, ``cells`` or ``tree`` (:class:`~dustygas.sph.neighbours.NeighbourFinder`).
+    reorder_every
+        Every this many steps store the particles in spatial order (cell by cell), so that
+        neighbours stay close in memory as the flow mixes them (0: never).
     fixed_dt
         Use this time step instead of the criteria (0: adaptive).
     """
@@ -112,6 +115,7 @@ class SPHOptions:
     h_max_iterations: int = 30
     neighbour_buffer: float = 0.02
     neighbour_search: str = "auto"
+    reorder_every: int = 20
     fixed_dt: float = 0.0
 
     def __post_init__(self) -> None:
@@ -319,8 +323,11 @@ class SPHEngine:
             self._advance(dt)
 
     def _advance(self, dt: float) -> None:
+        o = self.options
+        if o.reorder_every and self.cycle % o.reorder_every == 0:
+            self.reorder(self.finder.spatial_order(self.particles.pos, self.particles.h))
         self._ensure()
-        p, o = self.particles, self.options
+        p = self.particles
         lo, length, per = self._box_arrays
         eu, ea = self.eos.evolves_energy, self.evolves_alpha
         kick(p.vel, self.acc, p.u, self.dudt, p.alpha, self.dalpha, 0.5 * dt, eu, ea, o.alpha_min, o.alpha_max)
@@ -345,6 +352,12 @@ class SPHEngine:
                                 self.curlv, p.h, self.cs, dt, o.alpha_min, o.alpha_max, o.switch_decay)
         self.t += dt
         self.cycle += 1
+
+    def reorder(self, order: np.ndarray) -> None:
+        """Store the particles (and everything derived from them) in the order ``order``."""
+        self.particles = self.particles.take(order)
+        for name in _DERIVED:
+            setattr(self, name, np.ascontiguousarray(getattr(self, name)[order]))
 
     def _accrete(self, gone: np.ndarray) -> None:
         p = self.particles

@@ -115,50 +115,94 @@ def _box_gap2(alo, ahi, blo, bhi, length, periodic):
     return g2
 
 
+@njit(cache=True)
+def _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, out):
+    """Leaves of the source tree within reach of query leaf ``leaf``: written to ``out`` (when
+    given room), returns how many particles they hold and how many leaves."""
+    top = 1
+    stack[0] = 0
+    total = 0
+    nleaves = 0
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        reach = max(qhmax[leaf], shmax[node])
+        if _box_gap2(qlo[leaf], qhi[leaf], slo[node], shi[node], length, periodic) >= r2 * reach * reach:
+            continue
+        if schild[node] >= 0:
+            stack[top] = schild[node]
+            stack[top + 1] = schild[node] + 1
+            top += 2
+            continue
+        if nleaves < out.shape[0]:
+            out[nleaves] = node
+        nleaves += 1
+        total += send[node] - sstart[node]
+    return total, nleaves
+
+
 @njit(parallel=True, cache=True)
 def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, exclude_self, index, count, overlap):
-    """Neighbour rows of the queries (tree ``qtree``) among the sources (tree ``stree``)."""
+    """Neighbour rows of the queries (tree ``qtree``) among the sources (tree ``stree``): per query
+    leaf, the particles of the source leaves in reach are gathered into contiguous arrays once and
+    tested against each query particle in two vectorisable passes (as in the cell list)."""
     qorder, qstart, qend, qchild, qlo, qhi, qhmax = qtree
     sorder, sstart, send, schild, slo, shi, shmax = stree
     cap = index.shape[1]
     r2 = radius * radius
+    inv_l = np.zeros(3)
+    for d in range(3):
+        if periodic[d]:
+            inv_l[d] = 1.0 / length[d]
     leaves = np.flatnonzero(qchild == -1)
     for il in prange(leaves.shape[0]):
         leaf = leaves[il]
-        for k in range(qstart[leaf], qend[leaf]):
-            count[qorder[k]] = 0
-            overlap[qorder[k]] = -1
         stack = np.empty(128, np.int64)
-        top = 1
-        stack[0] = 0
-        while top > 0:
-            top -= 1
-            node = stack[top]
-            reach = max(qhmax[leaf], shmax[node])
-            if _box_gap2(qlo[leaf], qhi[leaf], slo[node], shi[node], length, periodic) >= r2 * reach * reach:
-                continue
-            if schild[node] >= 0:
-                stack[top] = schild[node]
-                stack[top + 1] = schild[node] + 1
-                top += 2
-                continue
-            for k in range(qstart[leaf], qend[leaf]):
-                a = qorder[k]
-                xa, ya, za = qpos[a, 0], qpos[a, 1], qpos[a, 2]
-                ha2 = qh[a] * qh[a]
-                n = count[a]
-                for j in range(sstart[node], send[node]):
-                    b = sorder[j]
+        nodes = np.empty(64, np.int64)
+        m, nl = _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+        if nl > nodes.shape[0]:
+            nodes = np.empty(nl, np.int64)
+            _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+        px = np.empty(m)
+        py = np.empty(m)
+        pz = np.empty(m)
+        ph2 = np.empty(m)
+        pid = np.empty(m, np.int64)
+        d2 = np.empty(m)
+        j = 0
+        for t in range(nl):
+            node = nodes[t]
+            for k in range(sstart[node], send[node]):
+                b = sorder[k]
+                px[j] = spos[b, 0]
+                py[j] = spos[b, 1]
+                pz[j] = spos[b, 2]
+                ph2[j] = sh[b] * sh[b]
+                pid[j] = b
+                j += 1
+        for k in range(qstart[leaf], qend[leaf]):
+            a = qorder[k]
+            xa, ya, za = qpos[a, 0], qpos[a, 1], qpos[a, 2]
+            ha2 = qh[a] * qh[a]
+            for j in range(m):
+                dx = xa - px[j]
+                dy = ya - py[j]
+                dz = za - pz[j]
+                dx -= length[0] * np.rint(dx * inv_l[0])  # minimum image (no-op when not periodic)
+                dy -= length[1] * np.rint(dy * inv_l[1])
+                dz -= length[2] * np.rint(dz * inv_l[2])
+                d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
+            n = 0
+            hit = -1
+            for j in range(m):
+                if d2[j] < 0.0:
+                    b = pid[j]
                     if exclude_self and b == a:
                         continue
-                    dx = minimum_image(xa - spos[b, 0], length[0], periodic[0])
-                    dy = minimum_image(ya - spos[b, 1], length[1], periodic[1])
-                    dz = minimum_image(za - spos[b, 2], length[2], periodic[2])
-                    d2 = dx * dx + dy * dy + dz * dz
-                    if d2 < r2 * max(ha2, sh[b] * sh[b]):
-                        if d2 == 0.0:
-                            overlap[a] = b
-                        if n < cap:
-                            index[a, n] = b
-                        n += 1
-                count[a] = n
+                    if d2[j] == -r2 * max(ha2, ph2[j]):
+                        hit = b  # zero separation
+                    if n < cap:
+                        index[a, n] = b
+                    n += 1
+            count[a] = n
+            overlap[a] = hit

@@ -361,6 +361,16 @@ class NeighbourFinder:
         inv_size = ncell / extent
         return origin, inv_size, ncell, length, per
 
+    def spatial_order(self, pos: np.ndarray, h: np.ndarray) -> np.ndarray:
+        """A permutation listing particles cell by cell (or leaf by leaf): storing them in this
+        order keeps neighbours close in memory."""
+        if self.choose(h) == "tree":
+            from .kdtree import build_tree
+
+            return build_tree(pos, h, self.box.ndim, self.leaf_size)[0]
+        origin, inv_size, ncell, _, per = self._grid([pos], float(h.max(initial=0.0)))
+        return _bin(pos, origin, inv_size, ncell, per)[1]
+
     def find(self, pos: np.ndarray, h: np.ndarray, query_pos: np.ndarray | None = None,
              query_h: np.ndarray | None = None) -> NeighbourList:
         """Neighbours of every query particle among the sources ``(pos, h)``.

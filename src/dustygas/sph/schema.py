@@ -37,6 +37,7 @@ SPH_SCHEMA: dict[str, Param] = {
     "neighbour_buffer": Param(0.02, "relative margin on h of the neighbour tables", min=0.0, max=1.0),
     "neighbour_search": Param("auto", "neighbour search: cell list, k-d tree, or chosen by the spread of h",
                               choices=("auto", "cells", "tree")),
+    "reorder_every": Param(20, "steps between spatial re-orderings of the particle arrays (0: never)", min=0),
     "fixed_dt": Param(0.0, "fixed time step (0: adaptive)", "code time", min=0.0),
 }
 
