@@ -5,7 +5,9 @@ import pytest
 
 from dustygas.sph import TEST, Box, EquationOfState, ExternalForces, ParticleSet, SPHEngine, SPHOptions
 
-from ._run import advance_to
+from dustygas.sph.timestep import drag_timestep
+
+from ._run import advance_to, build
 
 
 def _test_particles(pos, vel, external, dt):
@@ -45,3 +47,12 @@ def test_softened_point_mass_circular_orbit():
                     ExternalForces(star_gm=1.0, softening=eps))
     advance_to(eng, 2 * np.pi / (v / 1.0))
     assert np.linalg.norm(eng.particles.pos[0]) == pytest.approx(1.0, abs=1e-5)
+
+
+def test_extra_time_step_limits_are_honoured():
+    """A registered limit (here the explicit-drag bound dt <= 0.9 t_s of thesis eq. 2.15 with
+    t_s = 1e-3) caps the step; without it the Courant/acceleration step is larger."""
+    prob, cfg, eng = build("sph-sod", "problem.nx=32")
+    free = eng.timestep()
+    eng.timestep_limits.append(lambda e: drag_timestep(np.full(len(e.particles), 1e-3)))
+    assert free > 1e-3 and eng.timestep() == pytest.approx(0.9e-3, rel=1e-15)

@@ -49,7 +49,7 @@ from .integrator import drift_and_predict, kick
 from .kernels import KERNEL_NAMES, get_kernel
 from .neighbours import Box, NeighbourFinder
 from .particles import GAS, ParticleSet, count_invalid
-from .timestep import courant_force_timestep
+from .timestep import combined_timestep, courant_force_timestep
 from .viscosity import cullen_dehnen_alpha, morris_monaghan_rate
 
 __all__ = ["SPHOptions", "SPHEngine"]
@@ -159,6 +159,9 @@ class SPHEngine:
         self.last_neighbours = None
         self.h_iterations = 0
         self.extra_searches = 0  # neighbour searches repeated because some h outgrew its table
+        #: further time-step limits, each ``f(engine) -> dt`` (e.g. the drag limit of thesis eq. 2.15,
+        #: :func:`~dustygas.sph.timestep.drag_timestep`, added by the dust modules)
+        self.timestep_limits: list = []
         self._check_setup()
         box.wrap(particles.pos)
         self._allocate(len(particles))
@@ -310,12 +313,13 @@ class SPHEngine:
 
     # ------------------------------------------------------------------ run-loop protocol
     def timestep(self) -> float:
-        """Largest stable step: Courant (eq. 2.13) and acceleration (eq. 2.14) criteria."""
+        """Largest stable step: Courant (eq. 2.13) and acceleration (eq. 2.14) criteria, and any
+        :attr:`timestep_limits` (eq. 2.15 for drag)."""
         self._ensure()
         if self.options.fixed_dt > 0:
             return self.options.fixed_dt
-        return courant_force_timestep(self.particles.h, self.vsig, self.acc, self.options.c_cour,
-                                      self.options.c_force)
+        dt = courant_force_timestep(self.particles.h, self.vsig, self.acc, self.options.c_cour, self.options.c_force)
+        return combined_timestep(dt, *(limit(self) for limit in self.timestep_limits))
 
     def advance(self, dt: float) -> None:
         """One kick-drift-kick step of length ``dt`` (:mod:`dustygas.sph.integrator`)."""
