@@ -14,6 +14,8 @@ from ._run import advance_to, build
 def _turbulent_box(force="price2012", seed=4, n=10, **opts):
     """3D periodic adiabatic box, cubic lattice jittered, random velocities of Mach ~1 plus a bulk
     flow, so that shocks form and viscosity, conductivity and the switch all act."""
+    if force == "gasoline2-wadsley":
+        force, opts = "gasoline2", {**opts, "gasoline2_f": "wadsley"}
     rng = np.random.default_rng(seed)
     dx = 1.0 / n
     pos = cubic_lattice((n, n, n), (0.0,) * 3, (1.0,) * 3) + rng.uniform(-0.2, 0.2, (n**3, 3)) * dx
@@ -24,7 +26,7 @@ def _turbulent_box(force="price2012", seed=4, n=10, **opts):
                      SPHOptions(force=force, **opts))
 
 
-@pytest.mark.parametrize("force", ["price2012", "gasoline2"])
+@pytest.mark.parametrize("force", ["price2012", "gasoline2", "gasoline2-wadsley"])
 def test_momentum_conserved_to_round_off(force):
     """Acceptance 3a: over 100 steps of a shocking periodic box the total momentum changes by less
     than 1e-13 of sum m|v| (measured 2.9e-16 and 2.6e-16 for the two forms)."""
