@@ -99,6 +99,7 @@ def fig4_3(output: Path, quick: bool = True) -> list[Path]:
     js = write_json(output / "fig4_3.json", {"curves": theory, "perpendicular": perp_info,
                                               "K_range": [float(k[0]), float(k[-1])], "theta_deg": THETA, "Pi": PI})
 
+    from ..linear import growth_rate
     from ..linear.resonance import high_k_growth
 
     plt = pyplot()
@@ -121,13 +122,16 @@ def fig4_3(output: Path, quick: bool = True) -> list[Path]:
     ax.set_xlabel(r"wavenumber $|K| = |k|\eta r$")
     ax.set_ylabel(r"growth rate $s/\Omega$ of the fastest mode")
     t1 = theory["taus=1 mu=0.1"]
+    t40 = math.radians(40.0)  # the angle at which fixed t_s gives the thesis's "~0.03"
+    s40 = max(float(growth_rate(1.0, 0.1, k[-1] * math.sin(t40), sg * k[-1] * math.cos(t40), Pi=PI, vz="settling"))
+              for sg in (1, -1))
     ax.set_title(f"thesis Fig 4.3: θk = ±{THETA:g}° from vertical (faster of ±Kz), Π = {PI:g}, "
                  "v̄z = −cs τs/(2τs²+1)\n"
-                 "peaks: SH18 resonance √(μ/2) sin θk (±12 % from radial drift), the same for both drag laws\n"
+                 "peaks: SH18 resonance √(μ/2) sin θk (+10-12 % from radial drift), the same for both drag laws\n"
                  "tails: fixed ts damped below zero for τs ≤ 0.1 (gas compression); Epstein: every curve plateaus\n"
                  f"τs = 1, μ = 0.1 plateau: {t1['s_at_Kmax']:.3g} (fixed ts), "
-                 f"{t1['s_at_Kmax_epstein']:.3g} (Epstein); "
-                 "the thesis quotes ~0.03", fontsize=8)
+                 f"{t1['s_at_Kmax_epstein']:.3g} (Epstein); thesis: ~0.03 (fixed ts at θk = 40°: {s40:.3g})",
+                 fontsize=8)
     ax = axes[1]
     lines = []
     for i, name in enumerate(perp):
