@@ -29,8 +29,9 @@ Public API
 
 Modules: :mod:`~dustygas.linear.operator` (the equations), :mod:`~dustygas.linear.modes`
 (eigenmodes, growth rates), :mod:`~dustygas.linear.eigensolver` (compiled QR),
-:mod:`~dustygas.linear.maps` (growth-rate maps), :mod:`~dustygas.linear.shearing_wave`
-(non-axisymmetric shearing waves).
+:mod:`~dustygas.linear.maps` (growth-rate maps), :mod:`~dustygas.linear.resonance` (analytic
+growth rates with a settling drift: the SH18 resonance, the large-k plateau, the (μk)^{1/3}
+branch), :mod:`~dustygas.linear.shearing_wave` (non-axisymmetric shearing waves).
 """
 
 from .modes import Eigenmodes, Mode, eigenmodes, fastest_mode, growth_rate

@@ -45,6 +45,8 @@ A vertical drift V_zj is held steady by constant external forces (vertical gravi
 on the gas, the part of the hydrostatic pressure gradient that balances the dust's drag). They
 are not perturbed, so the perturbations feel the drift through advection (k·V_j) and the
 density-weighted drag terms (δρ_j − γ δρ_g) V_zj; the gas has no background vertical velocity.
+What this gives (the SH18 resonance, the large-k plateau and its drag-law dependence, the
+(μk)^{1/3} branch) is derived in :mod:`dustygas.linear.resonance`.
 
 The incompressible limit Π → 0 is taken exactly: δρ_g → 0 with c² δρ_g finite (a pressure that
 enforces k·u = 0). The gas velocity is then u = a_1 e_1 + a_2 e_2 on an orthonormal basis of

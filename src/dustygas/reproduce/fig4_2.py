@@ -17,7 +17,7 @@ PI = 0.05
 K_RANGE = (1e-2, 1e5)
 
 
-def growth_curves(quick: bool, vz) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+def growth_curves(quick: bool, vz, drag: str = "consistent") -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """Growth vs |K| for every (τ_s, μ) of the figure; the fastest of (K_x, ±K_z) when settling."""
     from ..linear.maps import growth_vs_k
 
@@ -26,7 +26,7 @@ def growth_curves(quick: bool, vz) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     for mu in MUS:
         for taus in TAUS:
             curves[f"taus={taus:g} mu={mu:g}"] = growth_vs_k(taus, mu, k, theta_deg=THETA, Pi=PI, vz=vz,
-                                                             mirror=vz != 0.0)
+                                                             mirror=vz != 0.0, drag=drag)
     return k, curves
 
 
