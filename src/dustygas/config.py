@@ -429,14 +429,18 @@ def dump_toml(tables: Mapping[str, Mapping[str, Any]], top: Mapping[str, Any] | 
 
 
 def describe_schema(schema: Schema) -> str:
-    """Table of every parameter: name, default, units, allowed values and description."""
+    """Aligned table of every parameter: key, default, units, description and allowed values."""
     rows = []
     for section, params in schema.items():
         rows.append(f"[{section}]")
-        width = max((len(k) for k in params), default=0)
+        table = []
         for key, p in params.items():
-            default = _toml_value(p.default)
-            units = f" [{p.units}]" if p.units else ""
-            allowed = p.allowed()
-            rows.append(f"  {key:<{width}} = {default}{units}  -- {p.doc} ({allowed})")
-    return "\n".join(rows)
+            limits = p.allowed() if (p.choices is not None or p.min is not None or p.max is not None
+                                     or p.length is not None) else ""
+            doc = p.doc + (f"  ({limits})" if limits else "")
+            table.append((key, _toml_value(p.default), p.units, doc))
+        widths = [max((len(r[i]) for r in table), default=0) for i in range(3)]
+        for key, default, units, doc in table:
+            rows.append(f"  {key:<{widths[0]}} = {default:<{widths[1]}}  {units:<{widths[2]}}  {doc}".rstrip())
+        rows.append("")
+    return "\n".join(rows).rstrip() + "\n"

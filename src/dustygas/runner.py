@@ -353,7 +353,11 @@ def run_engine(
         rundir.create(overwrite)
         rundir.write_config(config_text(cfg))
         rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
-        loop.start()
+        try:
+            loop.start()
+        except SimulationError as exc:  # e.g. an invalid initial state: dump it like any other
+            loop._dump_crash(exc)
+            raise
     else:
         loop.restore(*restart_from)
         rundir.write_config(config_text(cfg))

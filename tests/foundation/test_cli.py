@@ -58,4 +58,4 @@ def test_run_writes_run_directory(tmp_path):
 def test_problems_lists_and_describes(tmp_path):
     proc = cli("problems", "toy-oscillator", cwd=tmp_path)
     assert proc.returncode == 0
-    assert "cfl    = 0.01" in proc.stdout and "omega * dt" in proc.stdout
+    assert "cfl    = 0.01" in proc.stdout and "omega * dt  (0 < value <= 1)" in proc.stdout

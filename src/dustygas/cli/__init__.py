@@ -21,6 +21,7 @@ COMMANDS: dict[str, str] = {
     "problems": "dustygas.cli.problems",
     "reproduce": "dustygas.cli.reproduce",
     "info": "dustygas.cli.info",
+    "linear": "dustygas.cli.linear",
 }
 
 

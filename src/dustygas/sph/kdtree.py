@@ -1,0 +1,208 @@
+"""A k-d tree neighbour search for strongly clustered particles (disks, collapsing clouds).
+
+The uniform cell list of :mod:`~dustygas.sph.neighbours` sizes every cell for the largest
+smoothing length, which is wasteful when :math:`h` spans orders of magnitude. Here particles are
+split recursively at the median of the longest side of their bounding box into leaves of at most
+``leaf_size``; every node stores its bounding box and the largest :math:`h` below it. For each
+leaf the tree is walked once, opening only nodes whose box comes closer to the leaf's box than
+:math:`R\\max(h^{\\rm leaf}_{\\max}, h^{\\rm node}_{\\max})` (periodic boxes by minimum image); the
+particles of the leaves reached are then tested pair by pair with the exact criterion
+:math:`r_{ab} < R\\max(h_a, h_b)`. Leaves are processed in parallel, each writing only its own
+particles' rows, so the table is deterministic. The output is the same
+:class:`~dustygas.sph.neighbours.NeighbourList` as the cell list's (rows in a different order).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from .neighbours import minimum_image
+
+__all__ = ["build_tree", "tree_search"]
+
+
+@njit(cache=True)
+def _select(idx, key, lo, hi, k):
+    """Reorder ``idx[lo:hi]`` so that ``key[idx[k]]`` is the k-th smallest (Hoare's quickselect)."""
+    while hi - lo > 1:
+        pivot = key[idx[(lo + hi) // 2]]
+        i, j = lo, hi - 1
+        while i <= j:
+            while key[idx[i]] < pivot:
+                i += 1
+            while key[idx[j]] > pivot:
+                j -= 1
+            if i <= j:
+                idx[i], idx[j] = idx[j], idx[i]
+                i += 1
+                j -= 1
+        if k <= j:
+            hi = j + 1
+        elif k >= i:
+            lo = i
+        else:
+            return
+
+
+@njit(cache=True)
+def build_tree(pos, h, ndim, leaf_size):
+    """Nodes ``(start, end, child, lo, hi, hmax)`` over the permutation ``order`` of the particles;
+    ``child[i]`` is the first of two consecutive children (-1 for a leaf)."""
+    n = pos.shape[0]
+    max_nodes = 2 * (n // max(leaf_size // 2, 1) + 1) + 1
+    start = np.empty(max_nodes, np.int64)
+    end = np.empty(max_nodes, np.int64)
+    child = np.full(max_nodes, -1, np.int64)
+    lo = np.empty((max_nodes, 3))
+    hi = np.empty((max_nodes, 3))
+    hmax = np.empty(max_nodes)
+    order = np.arange(n)
+    key = np.empty(n)
+    start[0] = 0
+    end[0] = n
+    count = 1
+    stack = np.empty(128, np.int64)
+    top = 0
+    stack[top] = 0
+    top += 1
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        s, e = start[node], end[node]
+        for d in range(3):
+            lo[node, d] = np.inf
+            hi[node, d] = -np.inf
+        hm = 0.0
+        for k in range(s, e):
+            i = order[k]
+            for d in range(3):
+                lo[node, d] = min(lo[node, d], pos[i, d])
+                hi[node, d] = max(hi[node, d], pos[i, d])
+            hm = max(hm, h[i])
+        hmax[node] = hm
+        if e - s <= leaf_size:
+            continue
+        axis = 0
+        for d in range(1, ndim):
+            if hi[node, d] - lo[node, d] > hi[node, axis] - lo[node, axis]:
+                axis = d
+        for k in range(s, e):
+            key[order[k]] = pos[order[k], axis]
+        mid = (s + e) // 2
+        _select(order, key, s, e, mid)
+        child[node] = count
+        start[count], end[count] = s, mid
+        start[count + 1], end[count + 1] = mid, e
+        stack[top] = count
+        stack[top + 1] = count + 1
+        top += 2
+        count += 2
+    return order, start[:count], end[:count], child[:count], lo[:count], hi[:count], hmax[:count]
+
+
+@njit(cache=True)
+def _box_gap2(alo, ahi, blo, bhi, length, periodic):
+    """Squared distance between two boxes (minimum image along periodic dimensions)."""
+    g2 = 0.0
+    for d in range(3):
+        ca = 0.5 * (alo[d] + ahi[d])
+        cb = 0.5 * (blo[d] + bhi[d])
+        sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
+        gap = sep - 0.5 * (ahi[d] - alo[d]) - 0.5 * (bhi[d] - blo[d])
+        if gap > 0.0:
+            g2 += gap * gap
+    return g2
+
+
+@njit(cache=True)
+def _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, out):
+    """Leaves of the source tree within reach of query leaf ``leaf``: written to ``out`` (when
+    given room), returns how many particles they hold and how many leaves."""
+    top = 1
+    stack[0] = 0
+    total = 0
+    nleaves = 0
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        reach = max(qhmax[leaf], shmax[node])
+        if _box_gap2(qlo[leaf], qhi[leaf], slo[node], shi[node], length, periodic) >= r2 * reach * reach:
+            continue
+        if schild[node] >= 0:
+            stack[top] = schild[node]
+            stack[top + 1] = schild[node] + 1
+            top += 2
+            continue
+        if nleaves < out.shape[0]:
+            out[nleaves] = node
+        nleaves += 1
+        total += send[node] - sstart[node]
+    return total, nleaves
+
+
+@njit(parallel=True, cache=True)
+def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, exclude_self, index, count, overlap):
+    """Neighbour rows of the queries (tree ``qtree``) among the sources (tree ``stree``): per query
+    leaf, the particles of the source leaves in reach are gathered into contiguous arrays once and
+    tested against each query particle in two vectorisable passes (as in the cell list)."""
+    qorder, qstart, qend, qchild, qlo, qhi, qhmax = qtree
+    sorder, sstart, send, schild, slo, shi, shmax = stree
+    cap = index.shape[1]
+    r2 = radius * radius
+    inv_l = np.zeros(3)
+    for d in range(3):
+        if periodic[d]:
+            inv_l[d] = 1.0 / length[d]
+    leaves = np.flatnonzero(qchild == -1)
+    for il in prange(leaves.shape[0]):
+        leaf = leaves[il]
+        stack = np.empty(128, np.int64)
+        nodes = np.empty(64, np.int64)
+        m, nl = _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+        if nl > nodes.shape[0]:
+            nodes = np.empty(nl, np.int64)
+            _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+        px = np.empty(m)
+        py = np.empty(m)
+        pz = np.empty(m)
+        ph2 = np.empty(m)
+        pid = np.empty(m, np.int64)
+        d2 = np.empty(m)
+        j = 0
+        for t in range(nl):
+            node = nodes[t]
+            for k in range(sstart[node], send[node]):
+                b = sorder[k]
+                px[j] = spos[b, 0]
+                py[j] = spos[b, 1]
+                pz[j] = spos[b, 2]
+                ph2[j] = sh[b] * sh[b]
+                pid[j] = b
+                j += 1
+        for k in range(qstart[leaf], qend[leaf]):
+            a = qorder[k]
+            xa, ya, za = qpos[a, 0], qpos[a, 1], qpos[a, 2]
+            ha2 = qh[a] * qh[a]
+            for j in range(m):
+                dx = xa - px[j]
+                dy = ya - py[j]
+                dz = za - pz[j]
+                dx -= length[0] * np.rint(dx * inv_l[0])  # minimum image (no-op when not periodic)
+                dy -= length[1] * np.rint(dy * inv_l[1])
+                dz -= length[2] * np.rint(dz * inv_l[2])
+                d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
+            n = 0
+            hit = -1
+            for j in range(m):
+                if d2[j] < 0.0:
+                    b = pid[j]
+                    if exclude_self and b == a:
+                        continue
+                    if d2[j] == -r2 * max(ha2, ph2[j]):
+                        hit = b  # zero separation
+                    if n < cap:
+                        index[a, n] = b
+                    n += 1
+            count[a] = n
+            overlap[a] = hit
