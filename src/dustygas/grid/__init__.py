@@ -5,14 +5,15 @@ Modules
 mesh
     :class:`Mesh`: one block of cells with ghost zones; the integer/float records kernels get.
 reconstruct, riemann
-    PLM (minmod, van Leer, MC) and PPM (Colella & Woodward 1984) face states; isothermal HLLE
-    and HLLC fluxes.
+    PLM (minmod, van Leer, MC), PPM (Colella & Woodward 1984) and PPM with the Colella &
+    Sekora (2008) extremum-preserving limiter; isothermal HLLE and HLLC fluxes.
 sweep
     The fused per-pencil kernel: gather, reconstruct, Riemann solve, update, source terms.
 integrator
     VL2 (Stone & Gardiner 2009), RK2, RK3 as stage tables; the particle coupling hook.
 boundaries, remap
-    Ghost zones (periodic, shear-periodic, outflow, reflecting) and the conservative shift.
+    Ghost zones (periodic, shear-periodic, outflow, reflecting, hydrostatic) and the
+    conservative shift.
 shearing_box, orbital_advection
     Coriolis/tidal/pressure-gradient/vertical-gravity sources (thesis eq. 4.2b); FARGO.
 diagnostics

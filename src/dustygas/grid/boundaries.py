@@ -20,6 +20,12 @@ outflow
     zero gradient: ghost = the last domain cell.
 reflecting
     mirror image with the normal momentum reversed.
+hydrostatic
+    (z only, with vertical gravity) an open boundary for a stratified isothermal box: the
+    velocity of the last domain cell is copied (the vertical one only if it points out of
+    the box, else it is set to zero) and the density continues the hydrostatic profile
+    ``rho ~ exp(-z^2 / 2H^2)``, ``H = c_s / Omega``, so that the boundary does not pull the
+    atmosphere down as zero-gradient ``outflow`` does.
 
 Ghosts are filled axis by axis, z, y, then x, each over the full extent of the other two
 axes, so edges and corners are right too (the particle module's TSC weights need them).
@@ -34,6 +40,7 @@ by the average of their own value and the conservatively remapped value of the o
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -44,14 +51,15 @@ from .remap import shift_column
 from .shearing_box import shear_offset
 
 __all__ = [
-    "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "BOUNDARY_KINDS",
+    "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
     "correct_radial_fluxes",
 ]
 
-PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING = 0, 1, 2, 3
+PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
 #: name -> code of the boundary kinds
-BOUNDARY_KINDS = {"periodic": PERIODIC, "shear-periodic": SHEAR_PERIODIC, "outflow": OUTFLOW, "reflecting": REFLECTING}
+BOUNDARY_KINDS = {"periodic": PERIODIC, "shear-periodic": SHEAR_PERIODIC, "outflow": OUTFLOW,
+                  "reflecting": REFLECTING, "hydrostatic": HYDROSTATIC}
 
 
 class Boundaries(NamedTuple):
@@ -67,6 +75,7 @@ class Boundaries(NamedTuple):
     vy_jump: float  # q Omega Lx if the full v_y is stored, 0 under orbital advection
     remap_method: int  # reconstruction of the fractional shift
     remap_limiter: int
+    half_inv_h2: float  # 1 / (2 H^2) = Omega^2 / (2 c_s^2) of the hydrostatic boundary
 
     @property
     def shearing(self) -> bool:
@@ -80,6 +89,7 @@ def make_boundaries(
     vy_jump: float = 0.0,
     remap_method: int = 1,
     remap_limiter: int = 2,
+    scale_height: float = 0.0,
 ) -> Boundaries:
     """Boundaries from one kind name per axis (both sides alike); inactive axes are ignored.
 
@@ -94,8 +104,11 @@ def make_boundaries(
         code = BOUNDARY_KINDS[name] if on else PERIODIC
         if code == SHEAR_PERIODIC and axis != 0:
             raise SetupError("shear-periodic boundaries are radial: only the x axis can have them")
+        if code == HYDROSTATIC and (axis != 2 or not scale_height > 0):
+            raise SetupError("hydrostatic boundaries are vertical: z axis only, with vertical gravity on")
         codes += [code, code]
-    return Boundaries(*codes, float(q_omega_lx), float(vy_jump), int(remap_method), int(remap_limiter))
+    half_inv_h2 = 0.5 / scale_height**2 if scale_height > 0 else 0.0
+    return Boundaries(*codes, float(q_omega_lx), float(vy_jump), int(remap_method), int(remap_limiter), half_inv_h2)
 
 
 @njit(cache=True, error_model="numpy")
@@ -104,12 +117,12 @@ def _source_index(kind: int, lower: bool, m: int, n: int, g: int) -> int:
     if lower:
         if kind == PERIODIC:
             return g - 1 - m + n
-        if kind == OUTFLOW:
+        if kind == OUTFLOW or kind == HYDROSTATIC:
             return g
         return g + m  # reflecting
     if kind == PERIODIC:
         return g + m
-    if kind == OUTFLOW:
+    if kind == OUTFLOW or kind == HYDROSTATIC:
         return g + n - 1
     return g + n - 1 - m  # reflecting
 
@@ -139,6 +152,28 @@ def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
                         to, frm = u[v, line, dst, :], u[v, line, src, :]
                     for i in range(nxt):
                         to[i] = sign * frm[i]
+
+
+@njit(cache=True, error_model="numpy")
+def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
+    """Open vertical boundaries of a stratified isothermal box, rows ``l0 .. l1-1``."""
+    nz, gz = lay.nz, lay.gz
+    for side in range(2):
+        src = gz if side == 0 else gz + nz - 1
+        z_src = sp.z0 + (src - gz + 0.5) * sp.dz
+        for m in range(gz):
+            dst = gz - 1 - m if side == 0 else gz + nz + m
+            z_dst = sp.z0 + (dst - gz + 0.5) * sp.dz
+            factor = math.exp(-(z_dst * z_dst - z_src * z_src) * bc.half_inv_h2)
+            for line in range(l0, l1):
+                for v in range(3):
+                    to, frm = u[v, dst, line, :], u[v, src, line, :]
+                    for i in range(to.shape[0]):
+                        to[i] = factor * frm[i]
+                to, frm = u[3, dst, line, :], u[3, src, line, :]
+                for i in range(to.shape[0]):
+                    outward = frm[i] < 0.0 if side == 0 else frm[i] > 0.0
+                    to[i] = factor * frm[i] if outward else 0.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -203,7 +238,10 @@ def fill_ghost_lines(u, axis, l0, l1, t, lay, sp, bc) -> None:
     All items of an axis are independent; the axes must be done in the order z, y, x.
     """
     if axis == 2:
-        _copy_ghosts(u, 2, lay.nz, lay.gz, bc.z_lo, bc.z_hi, l0, l1)
+        if bc.z_lo == HYDROSTATIC:
+            _hydrostatic_ghosts(u, lay, sp, bc, l0, l1)
+        else:
+            _copy_ghosts(u, 2, lay.nz, lay.gz, bc.z_lo, bc.z_hi, l0, l1)
     elif axis == 1:
         _copy_ghosts(u, 1, lay.ny, lay.gy, bc.y_lo, bc.y_hi, l0, l1)
     elif bc.x_lo != SHEAR_PERIODIC:

@@ -162,6 +162,7 @@ class GridEngine:
         self._bc = make_boundaries(
             tuple(boundaries), mesh.active, q * omega * lx,
             shear_velocity_jump(q, omega, lx, self.orbital_advection), recon, lim,
+            scale_height=cs / omega if vertical_gravity and omega > 0 else 0.0,
         )
         self._oa_rate = q * omega if self.orbital_advection and mesh.active[1] else 0.0
         # v_y(full) = v_y(stored) - to_full x ;  v_y(relative to shear) = v_y(stored) + to_relative x
