@@ -260,6 +260,38 @@ class GridEngine:
         self.t += dt
         self.cycle += 1
 
+    @property
+    def stage_count(self) -> int:
+        """Number of stages of the integrator (2 for VL2)."""
+        return int(self._ints.shape[0])
+
+    def stage_input(self, stage: int) -> np.ndarray:
+        """The state ``(4, NZ, NY, NX)`` that ``stage`` reads (for VL2: ``U^n``, then ``U^{n+1/2}``)."""
+        return self.states[self._ints[stage, 0]]
+
+    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None) -> None:
+        """Stage ``stage`` of the step from :attr:`t` to ``t + dt``, with the external momentum
+        source ``ext`` ``(3, nz, ny, nx)`` (momentum per unit volume and time; C-contiguous
+        float64) or None.
+
+        Call the stages in order ``0 .. stage_count - 1`` with the same ``dt``; the last one
+        finishes the step (orbital advection, Courant rate, ``t += dt``, ``cycle += 1``). The
+        stage fills the ghost zones of its input itself. The stages with ``ext=None`` are
+        bit-identical to :meth:`advance`. See :mod:`dustygas.grid.integrator` for the VL2
+        coupling recipe of the particles.
+        """
+        nstage = self._ints.shape[0]
+        use = ext is not None
+        rate, bad = advance_gas(
+            self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
+            self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
+            ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
+        )
+        if stage == nstage - 1:
+            self._check(rate, bad)
+            self.t += dt
+            self.cycle += 1
+
     def advance_with_sources(self, dt: float, hook: SourceHook) -> None:
         """One step calling ``hook(stage, U_read, t_stage, dt_stage)`` before each stage.
 
@@ -268,27 +300,18 @@ class GridEngine:
         per unit volume and time) or None. With a hook returning None this is bit-identical
         to :meth:`advance`. See :mod:`dustygas.grid.integrator` for the VL2 coupling recipe.
         """
-        ints, reals = self._ints, self._reals
-        nstage = ints.shape[0]
+        reals = self._reals
         want = (3,) + tuple(reversed(self.mesh.shape))
-        for s in range(nstage):
-            src = self.states[ints[s, 0]]
+        for s in range(self.stage_count):
+            src = self.stage_input(s)
             t_stage = self.t + reals[s, 3] * dt
             fill_ghosts(src, t_stage, self._layout, self._spacing, self._bc)
             ext = hook(s, src, t_stage, reals[s, 2] * dt)
-            use = ext is not None
-            if use:
+            if ext is not None:
                 ext = np.ascontiguousarray(ext, dtype=np.float64)
                 if ext.shape != want:
                     raise ValueError(f"momentum source has shape {ext.shape}, expected {want}")
-            rate, bad = advance_gas(
-                self.states, ints, reals, s, s + 1, s == nstage - 1, dt, self.t, self._layout, self._spacing,
-                self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-                ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
-            )
-        self._check(rate, bad)
-        self.t += dt
-        self.cycle += 1
+            self.advance_stage(s, dt, ext)
 
     def history(self) -> dict[str, float]:
         """Totals over the box (per unit length of inactive axes)."""

@@ -37,6 +37,8 @@ the stage's weight ``f dt`` in the first sweep. For VL2 (Bai & Stone 2010a, §2.
   (slot 1, ghosts filled at ``t + dt/2``) -- the gas velocity at the half step -- and deposit
   the back-reaction of their time-centred drag.
 
+:meth:`~dustygas.grid.engine.GridEngine.advance_stage` runs one stage with a given ``S_ext``
+(the particle engine calls it twice per step, computing each source in between);
 :meth:`~dustygas.grid.engine.GridEngine.advance_with_sources` calls a function at the start of
 each stage with the stage index, the state it reads and the stage time, and uses the array it
 returns as ``S_ext``. Orbital advection remaps the gas after the last stage; the budget
