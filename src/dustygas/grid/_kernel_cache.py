@@ -18,12 +18,16 @@ from pathlib import Path
 _HERE = Path(__file__).resolve().parent
 
 
-def ensure_fresh_cache(package_dir: Path = _HERE) -> bool:
-    """Drop the package's numba cache files if any source changed; True if files were removed."""
+def ensure_fresh_cache(package_dir: Path = _HERE, extra_sources: tuple[Path, ...] = ()) -> bool:
+    """Drop the package's numba cache files if any source changed; True if files were removed.
+
+    ``extra_sources``: files of other packages whose compiled functions the package's kernels
+    call (e.g. a scalar formula of :mod:`dustygas.physics`).
+    """
     if os.environ.get("NUMBA_CACHE_DIR"):
         return False
     digest = hashlib.sha1()
-    for src in sorted(package_dir.glob("*.py")):
+    for src in sorted(package_dir.glob("*.py")) + [Path(p) for p in extra_sources]:
         text = src.read_bytes()
         if b"numba" in text or src.name == "mesh.py":
             digest.update(src.name.encode())

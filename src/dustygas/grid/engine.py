@@ -56,6 +56,8 @@ class GridGeometry:
         Whether the radial boundaries slide (particles crossing x change y by the offset).
     velocity_relative_to_shear
         True under orbital advection: stored gas velocities are ``v + q Omega x y^``.
+    boundaries
+        Boundary kind name of each axis (:data:`~dustygas.grid.boundaries.BOUNDARY_KINDS`).
     """
 
     shape: tuple[int, int, int]
@@ -67,6 +69,7 @@ class GridGeometry:
     omega: float
     shear_periodic: bool
     velocity_relative_to_shear: bool
+    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic")
 
     def shear_offset(self, t: float) -> float:
         """Azimuthal offset ``q Omega Lx t mod Ly`` of the outer radial image at time ``t``."""
@@ -151,6 +154,7 @@ class GridEngine:
         # velocities relative to the shear; the remap itself only acts if y is active
         self.orbital_advection = bool(orbital_advection)
         self.shear_periodic = shear
+        self.boundary_kinds = tuple(boundaries)
         recon = RECONSTRUCTIONS[reconstruction]
         lim = LIMITERS[limiter]
         self._scheme = (recon, lim, RIEMANN_SOLVERS[riemann], self.cs)
@@ -196,7 +200,7 @@ class GridEngine:
     def geometry(self) -> GridGeometry:
         m = self.mesh
         return GridGeometry(m.shape, m.ghosts, m.lower, m.dx, m.size, self.q, self.omega,
-                            self.shear_periodic, self.orbital_advection)
+                            self.shear_periodic, self.orbital_advection, self.boundary_kinds)
 
     def set_primitive(self, rho: Any = 1.0, vx: Any = 0.0, vy: Any = 0.0, vz: Any = 0.0) -> None:
         """Set the domain from density and the *full* velocity (broadcast to ``(nz, ny, nx)``)."""
