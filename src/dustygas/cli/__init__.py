@@ -22,6 +22,7 @@ COMMANDS: dict[str, str] = {
     "reproduce": "dustygas.cli.reproduce",
     "info": "dustygas.cli.info",
     "linear": "dustygas.cli.linear",
+    "analyze": "dustygas.cli.analyze",
 }
 
 

@@ -51,7 +51,7 @@ from ..physics.drag import epstein_grain_size
 from .deposit import chunk_bounds
 from .diagnostics import MODE_FIELDS, gas_mode, particle_mode
 from .drag import DRAG_INTEGRATORS
-from .interp import KERNELS, Cells
+from .interp import KERNEL_REACH, KERNELS, Cells
 from .push import CORRECT, EPSTEIN, FIXED, PREDICT, Forces, Species, deposit_density, particle_stage
 from .store import ParticleStore, cell_keys, counting_sort, slab_axis, slab_starts
 
@@ -170,7 +170,7 @@ class ParticleGridEngine:
         self._method = DRAG_INTEGRATORS[integrator]
         self._axis = slab_axis(geom.shape)
         self._nslab = geom.shape[self._axis]
-        self._bounds = chunk_bounds(self._nslab)
+        self._bounds = chunk_bounds(self._nslab, KERNEL_REACH[self._order])
         ncell = nx * ny * nz
         self._fields = np.empty((4, ncell))
         #: the back-reaction source: written by the corrector, used by the next predictor

@@ -13,9 +13,10 @@ the gas. The stencil weights sum to one, so the gas receives exactly what the pa
 Threads without races, results without dependence on the thread count
 -----------------------------------------------------------------------
 The particles are sorted by slab (:mod:`dustygas.particles.store`); the slabs are grouped into
-an even number of *chunks* of at least four slabs (:func:`chunk_bounds`). During a stage a
-particle moves by less than one cell along the slab axis, and its stencil reaches one cell
-further, so a chunk deposits only into its own slabs and two slabs on either side. Chunks
+an even number of *chunks* of at least four slabs (six for the five-cell compensated TSC;
+:func:`chunk_bounds`). During a stage a particle moves by less than one cell along the slab
+axis, and its stencil reaches one (two) cells further, so a chunk deposits only into its own
+slabs and two (three) slabs on either side. Chunks
 0, 2, 4, ... therefore write disjoint cells and run in parallel; then chunks 1, 3, 5, ...
 Within a chunk the particles are processed in their (sorted) order, and every cell receives
 its contributions chunk by chunk in a fixed order, so the deposited field is the same for any
@@ -28,24 +29,23 @@ import numpy as np
 from numba import njit
 
 
-__all__ = ["MIN_CHUNK_SLABS", "chunk_bounds", "gas_fields"]
+__all__ = ["chunk_bounds", "gas_fields"]
 
-#: slabs per chunk: one cell of motion per stage plus a stencil half-width of one on each side
-MIN_CHUNK_SLABS = 4
-
-
-def chunk_bounds(nslab: int) -> np.ndarray:
+def chunk_bounds(nslab: int, reach: int = 1) -> np.ndarray:
     """Slab boundaries ``b[0] = 0 < b[1] < ... < b[m] = nslab`` of ``m`` chunks.
 
-    ``m`` is even with at least :data:`MIN_CHUNK_SLABS` slabs per chunk, or 1 if there are
-    fewer than ``2 * MIN_CHUNK_SLABS`` slabs (then the deposit runs on one thread).
+    A particle moves by less than one cell per stage and its stencil reaches ``reach`` cells
+    on either side of its own, so a chunk writes into its own slabs and ``1 + reach`` more on
+    each side: chunks of at least ``2 (1 + reach)`` slabs make chunks two apart disjoint. ``m``
+    is even, or 1 if there are too few slabs for two chunks (the deposit then runs on one
+    thread).
 
     >>> chunk_bounds(64)[:4], len(chunk_bounds(64)) - 1
     (array([ 0,  4,  8, 12]), 16)
-    >>> chunk_bounds(10), chunk_bounds(7)
-    (array([ 0,  5, 10]), array([0, 7]))
+    >>> chunk_bounds(10), chunk_bounds(7), len(chunk_bounds(64, reach=2)) - 1
+    (array([ 0,  5, 10]), array([0, 7]), 10)
     """
-    m = nslab // MIN_CHUNK_SLABS
+    m = nslab // (2 * (1 + reach))
     m -= m % 2
     if m < 2:
         return np.array([0, nslab], dtype=np.int64)

@@ -11,6 +11,8 @@ CIC    ``W = 1 - f, f`` in cells ``i, i + 1`` (``i = floor(s)``,      2 cells
        ``f = s - i``)
 TSC    ``W = (1/2 - d)^2/2, 3/4 - d^2, (1/2 + d)^2/2`` in cells       3 cells
        ``i - 1, i, i + 1`` (``i = round(s)``, ``d = s - i``)
+TSC-C  TSC convolved with the filter ``1 - δ²/8`` (``δ²u_j = u_{j+1} - 2u_j + u_{j-1}``):  5 cells
+       weights ``-W_{-1}/8, W_{-1} - (W_0 - 2W_{-1})/8, ...``
 =====  ===========================================================  =====================
 
 and the weight of a cell in 2D and 3D is the product over the active axes. Every assignment
@@ -43,13 +45,18 @@ from typing import NamedTuple
 
 from numba import njit
 
-__all__ = ["NGP", "CIC", "TSC", "KERNELS", "MAX_STENCIL", "Cells", "axis_weights", "into_box"]
+__all__ = ["NGP", "CIC", "TSC", "TSC_C", "KERNELS", "KERNEL_WIDTH", "KERNEL_REACH", "MAX_STENCIL", "Cells",
+           "axis_weights", "into_box"]
 
-NGP, CIC, TSC = 0, 1, 2
+NGP, CIC, TSC, TSC_C = 0, 1, 2, 3
 #: name -> code of the assignment functions
-KERNELS = {"ngp": NGP, "cic": CIC, "tsc": TSC}
-#: most cells a particle's stencil can hold (TSC in 3D)
-MAX_STENCIL = 27
+KERNELS = {"ngp": NGP, "cic": CIC, "tsc": TSC, "tsc-c": TSC_C}
+#: cells per axis of each assignment function, by code
+KERNEL_WIDTH = (1, 2, 3, 5)
+#: cells a particle's stencil reaches on either side of its own cell, by code
+KERNEL_REACH = (0, 1, 1, 2)
+#: most cells a particle's stencil can hold (compensated TSC in 3D)
+MAX_STENCIL = 125
 
 
 class Cells(NamedTuple):
@@ -83,24 +90,30 @@ class Cells(NamedTuple):
 
 @njit(cache=True, error_model="numpy")
 def axis_weights(s: float, order: int):
-    """First cell ``i`` and the weights ``(w0, w1, w2)`` of cells ``i, i+1, i+2`` along one axis.
+    """First cell ``i`` and the weights ``(w0, ..., w4)`` of cells ``i, ..., i+4`` along one axis.
 
     ``s`` is the particle position in cell widths from the centre of cell 0; unused weights
-    are 0 (NGP uses one cell, CIC two).
+    are 0 (NGP uses one cell, CIC two, TSC three, compensated TSC five).
     """
     # floor(v) as int(v + 2) - 2: exact for v > -2 (particles lie within a cell of the box) and
     # much cheaper than a call to floor
-    if order == TSC:
-        i = int(s + 2.5) - 2
-        d = s - i
-        a = 0.5 - d
-        b = 0.5 + d
-        return i - 1, 0.5 * a * a, 0.75 - d * d, 0.5 * b * b
     if order == CIC:
         i = int(s + 2.0) - 2
         f = s - i
-        return i, 1.0 - f, f, 0.0
-    return int(s + 2.5) - 2, 1.0, 0.0, 0.0
+        return i, 1.0 - f, f, 0.0, 0.0, 0.0
+    if order == NGP:
+        return int(s + 2.5) - 2, 1.0, 0.0, 0.0, 0.0, 0.0
+    i = int(s + 2.5) - 2
+    d = s - i
+    a = 0.5 - d
+    b = 0.5 + d
+    wm, w0, wp = 0.5 * a * a, 0.75 - d * d, 0.5 * b * b
+    if order == TSC:
+        return i - 1, wm, w0, wp, 0.0, 0.0
+    # TSC convolved with the filter 1 - δ²/8 (δ² u_j = u_{j+1} - 2 u_j + u_{j-1})
+    e = 0.125
+    return (i - 2, -e * wm, wm - e * (w0 - 2.0 * wm), w0 - e * (wp - 2.0 * w0 + wm), wp - e * (w0 - 2.0 * wp),
+            -e * wp)
 
 
 @njit(cache=True, error_model="numpy")

@@ -32,7 +32,7 @@ from ..physics.drag import epstein_stopping_time_scalar
 from .boundaries import wrap_particle
 from .deposit import gas_fields
 from .drag import kick
-from .interp import MAX_STENCIL, axis_weights, into_box
+from .interp import KERNEL_WIDTH, MAX_STENCIL, axis_weights, into_box
 from .store import cell_key, counting_sort, slab_starts
 
 __all__ = ["Forces", "Species", "FIXED", "EPSTEIN", "PREDICT", "CORRECT", "DENSITY", "particle_chunk",
@@ -109,16 +109,16 @@ def particle_chunk(stage, pos, vel, species, mass, fields, cells, order, sp, for
     # per-axis stencils: x cells (wrapped), their weights and through which radial boundary
     # they were reached; z row offsets and weights; y cells and weights for the particle
     # (variant 0) and its inner (1) and outer (2) images
-    xi = np.zeros(3, dtype=np.int64)
-    xw = np.zeros(3)
-    xs = np.zeros(3, dtype=np.int64)
-    zi = np.zeros(3, dtype=np.int64)
-    zw = np.zeros(3)
-    yi = np.zeros((3, 3), dtype=np.int64)
-    yw = np.zeros((3, 3))
+    xi = np.zeros(5, dtype=np.int64)
+    xw = np.zeros(5)
+    xs = np.zeros(5, dtype=np.int64)
+    zi = np.zeros(5, dtype=np.int64)
+    zw = np.zeros(5)
+    yi = np.zeros((3, 5), dtype=np.int64)
+    yw = np.zeros((3, 5))
     nx, ny, nz = cells.nx, cells.ny, cells.nz
     inv_dx, inv_dy, inv_dz = 1.0 / cells.dx, 1.0 / cells.dy, 1.0 / cells.dz
-    width = order + 1
+    width = KERNEL_WIDTH[order]
     wx = width if nx > 1 else 1
     wy = width if ny > 1 else 1
     wz = width if nz > 1 else 1
@@ -136,7 +136,7 @@ def particle_chunk(stage, pos, vel, species, mass, fields, cells, order, sp, for
             # ---- stencil: cells and weights (thesis eqs. 4.22 and 4.24 share them)
             images = False
             if nx > 1:
-                i0, xw[0], xw[1], xw[2] = axis_weights((x - cells.x0) * inv_dx - 0.5, order)
+                i0, xw[0], xw[1], xw[2], xw[3], xw[4] = axis_weights((x - cells.x0) * inv_dx - 0.5, order)
                 for a in range(wx):
                     i = i0 + a
                     sd = 0
@@ -150,18 +150,18 @@ def particle_chunk(stage, pos, vel, species, mass, fields, cells, order, sp, for
                     xs[a] = sd if cells.shear else 0
                     images = images or sd != 0
             if nz > 1:
-                k0, zw[0], zw[1], zw[2] = axis_weights((z - cells.z0) * inv_dz - 0.5, order)
+                k0, zw[0], zw[1], zw[2], zw[3], zw[4] = axis_weights((z - cells.z0) * inv_dz - 0.5, order)
                 for c in range(wz):
                     zi[c] = _wrap_index(k0 + c, nz) * ny
             if ny > 1:
                 sy = (y - cells.y0) * inv_dy - 0.5
-                j0, yw[0, 0], yw[0, 1], yw[0, 2] = axis_weights(sy, order)
+                j0, yw[0, 0], yw[0, 1], yw[0, 2], yw[0, 3], yw[0, 4] = axis_weights(sy, order)
                 for b in range(wy):
                     yi[0, b] = _wrap_index(j0 + b, ny)
                 if images and cells.shear:
                     for v in range(1, 3):
                         sv = into_box(sy - shift_a * inv_dy if v == 1 else sy + shift_a * inv_dy, ny)
-                        j0, yw[v, 0], yw[v, 1], yw[v, 2] = axis_weights(sv, order)
+                        j0, yw[v, 0], yw[v, 1], yw[v, 2], yw[v, 3], yw[v, 4] = axis_weights(sv, order)
                         for b in range(wy):
                             yi[v, b] = _wrap_index(j0 + b, ny)
             for c in range(wz):

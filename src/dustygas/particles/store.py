@@ -40,12 +40,13 @@ class ParticleStore:
     mass: np.ndarray
 
     def __post_init__(self) -> None:
-        self.pos = np.ascontiguousarray(self.pos, dtype=np.float64)
-        self.vel = np.ascontiguousarray(self.vel, dtype=np.float64)
+        # own, writable, contiguous copies (the engine sorts them in place)
+        self.pos = np.array(self.pos, dtype=np.float64, order="C")
+        self.vel = np.array(self.vel, dtype=np.float64, order="C")
         n = self.pos.shape[1] if self.pos.ndim == 2 else -1
-        self.species = np.ascontiguousarray(np.broadcast_to(self.species, (max(n, 0),)), dtype=np.int32)
-        self.pid = np.ascontiguousarray(self.pid, dtype=np.int64)
-        self.mass = np.ascontiguousarray(np.broadcast_to(self.mass, (max(n, 0),)), dtype=np.float64)
+        self.species = np.array(np.broadcast_to(self.species, (max(n, 0),)), dtype=np.int32)
+        self.pid = np.array(self.pid, dtype=np.int64)
+        self.mass = np.array(np.broadcast_to(self.mass, (max(n, 0),)), dtype=np.float64)
         if self.pos.ndim != 2 or self.pos.shape[0] != 3 or self.vel.shape != self.pos.shape:
             raise SetupError(f"particle positions and velocities must both be (3, N) arrays, got {self.pos.shape}"
                              f" and {self.vel.shape}")

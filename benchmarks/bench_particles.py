@@ -1,0 +1,166 @@
+"""Throughput of the particle-gas engine against Athena 4.2 on this machine (numbers.md §2).
+
+Main figure (issue 5): the YJ07 linA run, 64², one particle per cell, t = 0 -> 6, exactly as
+``dustygas run si-linA`` does it (VL2 + PPM + HLLC, Courant 0.4, TSC, semi-implicit drag),
+timed over the whole run on one and on two threads: zone-cycles/s, particle-updates/s and
+the ratio to Athena's 1.9e6 zone-cycles/s (CTU + PPM + HLLC at Courant 0.8, 45,923 cycles in
+99 s; growth 0.4139, -1.2 %). The growth rate of the run is measured too
+(:func:`dustygas.analysis.growth.measure_growth`, eight fields), so the speed is quoted at
+the accuracy it buys. Our VL2 needs Courant <= 0.5 in 2D (0.4 here): 91,846 cycles for
+Athena's 45,923, so the wall-clock ratio is the zone-cycle ratio / 2.
+
+Other rows time a few thousand steps of the same engine (best of ``--repeat`` timings, after
+warm-up) for Athena's other particle runs: linA with 4 particles per cell, linA 128², and
+the 3D run "AB" (τ_s = 0.1, ε = 1, 32³, box 2 ηr, shear-periodic, 1 and 8 particles per
+cell).
+
+Usage::
+
+    flock /tmp/dustygas-bench.lock python benchmarks/bench_particles.py            # everything
+    python benchmarks/bench_particles.py --quick                                      # timed rows only
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+
+import numba  # noqa: E402
+
+# Athena 4.2 anchors, one core of this machine (numbers.md §2)
+ATHENA = {
+    "linA 64^2 1ppc": dict(zone_cycles=1.9e6, cycles=45_923, wall=99.0, growth=0.4139),
+    "linA 64^2 4ppc": dict(zone_cycles=8.9e5, particle_updates=3.6e6, growth=0.4142),
+    "linA 128^2 1ppc": dict(zone_cycles=1.95e6, growth=0.4182),
+    "linB 64^2 1ppc": dict(zone_cycles=1.87e6, cycles=229_500, wall=502.0, growth=0.01273),
+    "AB 32^3 1ppc": dict(zone_cycles=4.9e5),
+    "AB 32^3 8ppc": dict(zone_cycles=1.7e5, particle_updates=1.36e6),
+}
+LINA_GROWTH = 0.4190091323  # consistent linearisation (Benitez-Llambay et al. 2019)
+
+
+def load() -> str:
+    try:
+        return " ".join(f"{x:.2f}" for x in os.getloadavg())
+    except OSError:
+        return "n/a"
+
+
+def si_engine(sets: list[str], name: str = "si-linA"):
+    from dustygas.problems import get_problem
+
+    prob = get_problem(name)
+    return prob.build(prob.config(overrides=sets))
+
+
+def ab_engine(lattice: int):
+    """3D run "AB" of Johansen & Youdin (2007), Bai & Stone (2010a): τ_s = 0.1, ε = 1, 32³,
+    box 2 ηr (Π = 0.05), shear-periodic, NSH drift plus 1e-3 noise, Courant 0.3."""
+    from dustygas.grid import GridEngine, Mesh
+    from dustygas.particles import ParticleGridEngine, ParticleStore
+    from dustygas.particles.params import lattice_positions
+    from dustygas.physics import nsh_velocities
+
+    Pi, n = 0.05, 32
+    L = 2 * Pi
+    mesh = Mesh((n, n, n), (L, L, L))
+    gas = GridEngine(mesh, reconstruction="ppm", riemann="hllc", cfl=0.3, omega=1.0, q=1.5,
+                     boundaries=("shear-periodic", "periodic", "periodic"), orbital_advection=True, eta_vK=Pi)
+    eq = nsh_velocities(0.1, 1.0, Pi)
+    rng = np.random.default_rng(0)
+    sh = tuple(reversed(mesh.shape))
+    x = mesh.centers(0)[None, None, :]
+    gas.set_primitive(1.0, float(eq.gas_vx) + 1e-3 * rng.standard_normal(sh), float(eq.gas_vy) - 1.5 * x, 0.0)
+    pos = lattice_positions(mesh.shape, mesh.lower, mesh.dx, lattice)
+    vel = np.zeros_like(pos)
+    vel[0], vel[1] = float(eq.dust_vx), float(eq.dust_vy)
+    vel += 1e-3 * rng.standard_normal(vel.shape)
+    store = ParticleStore.create(pos, vel, 0, mesh.cell_volume / lattice**3)
+    return ParticleGridEngine(gas, store, [0.1])
+
+
+def time_steps(make, seconds: float, repeat: int, threads: int) -> tuple[float, float, int]:
+    """Best and median steps/s of ``engine.advance(engine.timestep())`` over ``repeat`` timings."""
+    numba.set_num_threads(threads)
+    eng = make()
+    for _ in range(20):
+        eng.advance(eng.timestep())
+    rates = []
+    for _ in range(repeat):
+        n, t0 = 0, time.perf_counter()
+        while time.perf_counter() - t0 < seconds:
+            for _ in range(20):
+                eng.advance(eng.timestep())
+            n += 20
+        rates.append(n / (time.perf_counter() - t0))
+    return max(rates), statistics.median(rates), eng.particles.n
+
+
+def full_lina(threads: int) -> dict:
+    """linA 64² 1 ppc, t = 0 -> 6 through the run loop; wall, throughput and growth."""
+    from dustygas import api
+    from dustygas.analysis.growth import measure_growth
+
+    si_engine(["grid.nx=8", "grid.nz=8", "run.tlim=0.001"]).advance(1e-6)  # compile outside the timing
+    with tempfile.TemporaryDirectory() as tmp:
+        res = api.run("si-linA", output=Path(tmp) / "linA", set=[f"run.threads={threads}", "run.checkpoint_wall=0"])
+        fit = measure_growth(Path(tmp) / "linA")
+    return dict(cycles=res.cycles, wall=res.wall, zone_cycles=res.throughput,
+                particle_updates=res.throughput, growth=fit.growth_rate, spread=fit.spread)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--quick", action="store_true", help="skip the two full linA runs")
+    ap.add_argument("--seconds", type=float, default=3.0, help="length of one timing of the short rows")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args()
+    maxthreads = numba.config.NUMBA_NUM_THREADS
+    print(f"# bench_particles  {time.strftime('%Y-%m-%d %H:%M')}  numba {numba.__version__}  "
+          f"threads available {maxthreads}  load {load()}")
+    if not args.quick:
+        one = None
+        for threads in (1, maxthreads):
+            r = full_lina(threads)
+            one = one or r
+            a = ATHENA["linA 64^2 1ppc"]
+            print(f"linA 64^2 1ppc t=0-6  threads={threads}: {r['cycles']} cycles in {r['wall']:.1f} s  "
+                  f"{r['zone_cycles']:.3g} zone-cycles/s = {r['particle_updates']:.3g} particle-updates/s  "
+                  f"x{r['zone_cycles'] / a['zone_cycles']:.2f} Athena  (wall x{a['wall'] / r['wall']:.2f})  "
+                  f"growth {r['growth']:.5f} ({100 * (r['growth'] / LINA_GROWTH - 1):+.2f} %, fields within "
+                  f"{100 * r['spread']:.2f} %; Athena {a['growth']} ({100 * (a['growth'] / LINA_GROWTH - 1):+.1f} %))"
+                  f"  2 threads / 1: {r['zone_cycles'] / one['zone_cycles']:.2f}  load {load()}")
+    rows = [
+        ("linA 64^2 1ppc", lambda: si_engine([]), 64 * 64),
+        ("linA 64^2 4ppc", lambda: si_engine(["particles.lattice=2"]), 64 * 64),
+        ("linA 128^2 1ppc", lambda: si_engine(["grid.nx=128", "grid.nz=128"]), 128 * 128),
+        ("AB 32^3 1ppc", lambda: ab_engine(1), 32**3),
+        ("AB 32^3 8ppc", lambda: ab_engine(2), 32**3),
+    ]
+    for name, make, cells in rows:
+        best = {}
+        for threads in (1, maxthreads):
+            rate, med, npart = time_steps(make, args.seconds, args.repeat, threads)
+            best[threads] = rate
+            a = ATHENA[name]
+            line = (f"{name:<16} threads={threads}: {rate * cells:.3g} zone-cycles/s (median {med * cells:.3g})  "
+                    f"{rate * npart:.3g} particle-updates/s  x{rate * cells / a['zone_cycles']:.2f} Athena")
+            if "particle_updates" in a:
+                line += f" (particle-updates x{rate * npart / a['particle_updates']:.2f})"
+            if threads > 1:
+                line += f"  2 threads / 1: {rate / best[1]:.2f}"
+            print(line + f"  load {load()}")
+    numba.set_num_threads(maxthreads)
+
+
+if __name__ == "__main__":
+    main()

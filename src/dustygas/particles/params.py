@@ -1,0 +1,62 @@
+"""Configuration section shared by the particle problems, and particle set-up helpers.
+
+::
+
+    [particles]  lattice kernel integrator feedback cfl drag_cfl
+
+``lattice`` particles per cell along each active axis (1: one particle per cell in 2D and 3D),
+``kernel`` the assignment function, ``integrator`` the drag integrator, ``cfl`` the particle
+Courant number (0: the gas's), ``drag_cfl`` an optional limit ``Δt <= drag_cfl t_s``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..config import Config, Param
+from .coupling import ParticleGridEngine
+from .drag import DRAG_INTEGRATORS
+from .interp import KERNELS
+from .store import ParticleStore
+
+__all__ = ["PARTICLES", "lattice_positions", "particle_engine_from_config"]
+
+PARTICLES: dict[str, Param] = {
+    "lattice": Param(1, "particles per cell along each active axis (lattice^ndim per cell)", min=1),
+    "kernel": Param("tsc", "assignment function for gather and deposit (thesis eqs. 4.22, 4.24)",
+                    choices=tuple(KERNELS)),
+    "integrator": Param("semi-implicit", "drag integrator (semi-implicit: Bai & Stone 2010a; exponential: exact "
+                        "for the step's gas velocity)", choices=tuple(DRAG_INTEGRATORS)),
+    "feedback": Param(True, "back-reaction of the drag on the gas"),
+    "cfl": Param(0.0, "particle Courant number (0: that of the gas)", min=0.0, max=1.0),
+    "drag_cfl": Param(0.0, "if > 0, limit the step to drag_cfl times the smallest stopping time", min=0.0),
+}
+
+
+def lattice_positions(shape: tuple[int, int, int], lower, dx, lattice: int, offset: float = 0.5) -> np.ndarray:
+    """Positions ``(3, N)`` of ``lattice`` particles per cell and active axis, evenly spaced
+    (at ``(j + offset)/lattice`` of each cell), sorted like the cells (x fastest).
+
+    Put a lattice where the assignment function is smooth: CIC's weights have a kink at the
+    cell centres (use ``offset = 0`` for an odd ``lattice``), NGP's a jump at the faces.
+
+    >>> lattice_positions((2, 1, 1), (0.0, 0.0, 0.0), (1.0, 1.0, 1.0), 2)[0].tolist()
+    [0.25, 0.75, 1.25, 1.75]
+    """
+    axes = []
+    for n, lo, d in zip(shape, lower, dx):
+        if n > 1:
+            m = n * lattice
+            axes.append(lo + (np.arange(m) + offset) * d / lattice)
+        else:
+            axes.append(np.zeros(1))
+    z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")
+    return np.stack([x.ravel(), y.ravel(), z.ravel()])
+
+
+def particle_engine_from_config(cfg: Config, gas, store: ParticleStore, t_stop, cls=ParticleGridEngine,
+                                **kwargs) -> ParticleGridEngine:
+    """A :class:`ParticleGridEngine` (or subclass ``cls``) with the ``[particles]`` section of ``cfg``."""
+    p = cfg.particles
+    return cls(gas, store, t_stop, kernel=p.kernel, integrator=p.integrator, feedback=p.feedback,
+               cfl=p.cfl if p.cfl > 0 else None, drag_cfl=p.drag_cfl, **kwargs)

@@ -1,0 +1,232 @@
+"""``si-linear``: one linear streaming-instability eigenmode, gas + particles (thesis §4.4).
+
+The 2D radial-vertical (x-z) shearing box of Youdin & Johansen (2007) and Bai & Stone (2010a,
+§4.3): uniform gas and dust in the Nakagawa-Sekiya-Hayashi drift (thesis eq. 4.8) plus one
+eigenmode of :mod:`dustygas.linear` (one source of truth: the "consistent" linearisation of
+fixed-``t_s`` drag with momentum-conserving back-reaction is what this simulation integrates)
+with ``δρ_p/ρ_p0`` of amplitude ``amplitude``. The box holds one wavelength along each axis:
+``L_x = 2π/k_x``, ``L_z = 2π/|k_z|``.
+
+Units: ``Ω = c_s = H = 1`` for the gas and ``ρ_g0 = 1``; with ``Π = η v_K / c_s`` the velocity
+unit of the linear theory is ``η v_K = Π`` and its length unit ``η r = Π`` (so ``k = K/Π``).
+The global pressure gradient is the force ``2 η v_K Ω x̂`` on the gas, or with
+``problem.pressure_frame = "particles"`` the opposite force on the particles (velocities then
+shifted by ``+η v_K ŷ``; numbers.md §1). Orbital advection stores velocities relative to the
+shear (in the x-z plane it only removes the velocity jump of the radial images).
+
+Particles (numbers.md §1, "simulation set-up facts") start on a lattice of ``lattice^2``
+particles per cell and are *displaced* along ``k̂`` to realise the density wave: the map from
+lattice coordinate ``s_0`` to position ``s`` (both along ``k̂``) solves mass conservation
+``ρ(s) ds = ρ_0 ds_0`` exactly, ``s + (a/k) sin(k s + φ) = s_0`` (Newton), so there is no
+second-order density error; and the amplitude is scaled by ``S/T``, where ``T`` is the
+measured ratio of the deposited (kernel) density wave to the particles' one and ``S`` the cell
+average of the wave (``Π sinc(k_d Δx_d/2)``), so that the gas sees the cell-averaged density of
+the eigenmode (the kernel's transfer function compensated). Velocities are the eigenvector's
+at each particle's displaced position; gas cells get the cell averages of the eigenmode.
+
+Presets ``si-linA`` and ``si-linB``: Youdin & Johansen (2007) Table 1, Athena's set-up
+(numbers.md §1-2): τ_s = 0.1, ε = 3 resp. 0.2, K_x = K_z = 30 resp. 6, Π = 0.05, 64², one
+particle per cell, amplitude 1e-6, run to t = 6 resp. 150. Growth: 0.4190091 resp. 0.0154862
+(consistent linearisation); the mode amplitudes of all eight fields go to ``history.h5`` for
+``dustygas analyze growth``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..config import Param, with_defaults
+from ..errors import ConfigError, SetupError
+from ..grid import GridEngine, Mesh
+from ..grid.params import SCHEME
+from ..particles import ParticleStore
+from ..particles.interp import Cells, KERNELS
+from ..particles.params import PARTICLES, lattice_positions, particle_engine_from_config
+from ..particles.push import deposit_density
+from ..runner import RUN_SCHEMA
+from . import Problem, preset, register
+
+__all__ = ["SILinear", "StreamingBox", "streaming_box"]
+
+#: the scheme defaults of the particle problems (see the report of issue 5: PPM + HLLC keep
+#: the slow linB mode at 64 cells per wavelength)
+SI_SCHEME = with_defaults(SCHEME, reconstruction="ppm", riemann="hllc")
+
+
+@dataclass
+class StreamingBox:
+    """What :func:`streaming_box` built: the engine and the mode it holds."""
+
+    engine: object
+    k: np.ndarray  # wave vector in code units
+    mode_numbers: tuple[int, int, int]
+    eigenvector: dict
+    omega: complex  # linear-theory frequency (standard convention), units of Omega
+
+
+def _cell_average_factor(k: np.ndarray, dx) -> float:
+    return float(np.prod([np.sinc(kd * d / (2 * np.pi)) for kd, d in zip(k, dx)]))
+
+
+def _displace(pos0: np.ndarray, k: np.ndarray, amp: complex) -> np.ndarray:
+    """Positions realising ``δρ/ρ = Re(amp e^{i k·x})`` from the lattice ``pos0`` (exact map)."""
+    kk = float(np.linalg.norm(k))
+    khat = k / kk
+    a, phi = abs(amp), math.atan2(amp.imag, amp.real)
+    s0 = khat @ pos0
+    s = s0 - (a / kk) * np.sin(kk * s0 + phi)
+    for _ in range(50):
+        f = s + (a / kk) * np.sin(kk * s + phi) - s0
+        s -= f / (1.0 + a * np.cos(kk * s + phi))
+        if np.max(np.abs(f)) < 1e-15 * max(1.0, np.max(np.abs(s0))):
+            break
+    return pos0 + np.outer(khat, s - s0)
+
+
+def _wrap(pos: np.ndarray, lower, box, shape) -> np.ndarray:
+    out = pos.copy()
+    for a in range(3):
+        if shape[a] > 1:
+            out[a] = lower[a] + np.mod(out[a] - lower[a], box[a])
+            out[a] = np.where(out[a] >= lower[a] + box[a], lower[a], out[a])
+    return out
+
+
+def streaming_box(
+    taus: float,
+    mu: float,
+    kx: float,
+    kz: float,
+    Pi: float,
+    amplitude: float,
+    shape: tuple[int, int],
+    scheme: dict,
+    lattice: int = 1,
+    kernel: str = "tsc",
+    vz: float = 0.0,
+    pressure_frame: str = "gas",
+    cfg=None,
+    linearisation: str = "consistent",
+) -> StreamingBox:
+    """A 2D x-z box holding one eigenmode of the streaming instability (module docstring).
+
+    ``taus, mu, kx, kz, Pi, vz`` are those of :class:`~dustygas.linear.StreamingParams` (K in
+    units of 1/(ηr), ``vz`` in ηv_K: a steady vertical dust drift relative to the gas, held by
+    constant accelerations ``vz/t_s`` on the dust and ``-mu vz/t_s`` on the gas). ``shape`` is
+    ``(nx, nz)``; ``scheme`` the gas scheme (``integrator, reconstruction, limiter, riemann,
+    cfl``); ``cfg`` a configuration with a ``[particles]`` section (else the defaults).
+    """
+    from ..linear import StreamingParams, fastest_mode
+    from ..physics import nsh_velocities
+
+    if kx == 0 or kz == 0:
+        raise SetupError("the 2D box holds one wavelength along x and z: kx and kz must be non-zero")
+    mode = fastest_mode(StreamingParams(taus=taus, mu=mu, kx=kx, kz=kz, Pi=Pi, drag=linearisation, vz=vz))
+    ev = mode.eigenvector
+    k = np.array([kx / Pi, 0.0, kz / Pi])  # code units: length unit eta r = Pi H
+    nx, nz = shape
+    mesh = Mesh((nx, 1, nz), (2 * math.pi / abs(k[0]), 1.0, 2 * math.pi / abs(k[2])))
+    eta_vk = Pi  # velocity unit of the linear theory in units of c_s
+    t_stop = taus  # Omega = 1
+    gas_frame = pressure_frame == "gas"
+    gas = GridEngine(mesh, cs=1.0, boundaries=("periodic", "periodic", "periodic"), omega=1.0, q=1.5,
+                     orbital_advection=True, eta_vK=eta_vk if gas_frame else 0.0, **scheme)
+    eq = nsh_velocities(taus, mu)
+    boost = 0.0 if gas_frame else 1.0  # particle frame: every velocity + eta v_K y^
+    U = np.array([float(eq.gas_vx), float(eq.gas_vy) + boost, 0.0]) * eta_vk
+    V = np.array([float(eq.dust_vx), float(eq.dust_vy) + boost, vz]) * eta_vk
+    # ---- gas: cell averages of the eigenmode
+    x, y, z = mesh.meshgrid()
+    phase = np.exp(1j * (k[0] * x + k[2] * z)) * np.ones((nz, 1, nx))
+    S = _cell_average_factor(k, mesh.dx)
+    A = amplitude
+    drho_g = (A * ev["drho_g"] * phase).real * S
+    rho = 1.0 + drho_g
+    mom = []
+    for a, key in enumerate(("ux", "uy", "uz")):
+        du = (A * (ev[key] * eta_vk + U[a] * ev["drho_g"]) * phase).real * S
+        mom.append(U[a] + du)
+    xc = mesh.centers(0)[None, None, :]
+    gas.set_primitive(rho, mom[0] / rho, mom[1] / rho - 1.5 * xc, mom[2] / rho)
+    # ---- particles: lattice displaced by the compensated density wave
+    lower, dx, box = mesh.lower, mesh.dx, mesh.size
+    pos0 = lattice_positions(mesh.shape, lower, dx, lattice, 0.0 if kernel == "cic" and lattice % 2 else 0.5)
+    npart = pos0.shape[1]
+    m = mu * 1.0 * mesh.cell_volume / lattice**2
+    cells = Cells(nx, 1, nz, 0, 0, 0, *dx, *lower, *box, False, 0.0, 0.0)
+    order = KERNELS[kernel]
+    eps = 1e-4  # a small wave measures the kernel's transfer function T (linear in eps)
+    probe = _wrap(_displace(pos0, k, complex(eps)), lower, box, mesh.shape)
+    rho_p = deposit_density(probe, np.full(npart, m), cells, order, 0.0).reshape(nz, 1, nx)
+    T = (2.0 * np.mean(rho_p * np.conj(phase)) / mu).real / eps
+    amp_p = A * ev["drho_p"] * S / T
+    pos = _wrap(_displace(pos0, k, amp_p), lower, box, mesh.shape)
+    ph = np.exp(1j * (k[0] * pos[0] + k[2] * pos[2]))
+    vel = np.empty((3, npart))
+    for a, key in enumerate(("wx", "wy", "wz")):
+        vel[a] = V[a] + (A * ev[key] * eta_vk * ph).real  # relative to the shear (orbital advection)
+    store = ParticleStore.create(pos, vel, 0, m)
+    mode_numbers = (1, 0, 1 if k[2] > 0 else -1)
+    accel = (0.0 if gas_frame else -2.0 * eta_vk, 0.0, vz * eta_vk / t_stop)
+    kwargs = dict(acceleration=accel, gas_acceleration_z=-mu * vz * eta_vk / t_stop, mode=mode_numbers)
+    if cfg is not None:
+        engine = particle_engine_from_config(cfg, gas, store, [t_stop], **kwargs)
+    else:
+        from ..particles import ParticleGridEngine
+
+        engine = ParticleGridEngine(gas, store, [t_stop], kernel=kernel, **kwargs)
+    return StreamingBox(engine, k, mode_numbers, ev, mode.omega)
+
+
+def _scheme(cfg) -> dict:
+    s = cfg.scheme
+    return dict(integrator=s.integrator, reconstruction=s.reconstruction, limiter=s.limiter, riemann=s.riemann,
+                cfl=s.cfl)
+
+
+@register
+class SILinear(Problem):
+    name = "si-linear"
+    summary = "One linear streaming-instability eigenmode in a 2D x-z box of gas + particles (YJ07, BS10)."
+    schema = {
+        "run": with_defaults(RUN_SCHEMA, tlim=6.0, dt_history=0.01),
+        "grid": {
+            "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
+            "nz": Param(64, "cells along z (vertical); L_z = 2 pi Pi / |K_z|", min=4),
+        },
+        "scheme": SI_SCHEME,
+        "particles": PARTICLES,
+        "problem": {
+            "taus": Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True),
+            "mu": Param(3.0, "dust-to-gas density ratio (YJ07's epsilon)", min=0.0, min_open=True),
+            "kx": Param(30.0, "radial wavenumber K_x = k_x eta r", "1/(eta r)", min=0.0, min_open=True),
+            "kz": Param(30.0, "vertical wavenumber K_z = k_z eta r (sign picks the mode)", "1/(eta r)"),
+            "Pi": Param(0.05, "eta v_K / c_s (velocity unit eta v_K = Pi, length unit eta r = Pi H)", min=0.0,
+                        min_open=True),
+            "amplitude": Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1),
+            "pressure_frame": Param("gas", "global pressure gradient as a force on the gas, or the opposite force "
+                                    "on the particles", choices=("gas", "particles")),
+        },
+    }
+
+    def validate(self, cfg) -> None:
+        if cfg.scheme.integrator != "vl2":
+            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
+        if cfg.problem.kz == 0:
+            raise ConfigError("problem.kz = 0: the 2D box needs a vertical wavenumber")
+
+    def build(self, cfg):
+        p = cfg.problem
+        box = streaming_box(p.taus, p.mu, p.kx, p.kz, p.Pi, p.amplitude, (cfg.grid.nx, cfg.grid.nz), _scheme(cfg),
+                            lattice=cfg.particles.lattice, kernel=cfg.particles.kernel,
+                            pressure_frame=p.pressure_frame, cfg=cfg)
+        return box.engine
+
+
+preset("si-linA", SILinear, "Youdin & Johansen (2007) linA: tau_s = 0.1, eps = 3, K = 30; growth 0.4190 (64^2, 1 ppc).",
+       run={"tlim": 6.0, "dt_history": 0.01}, problem={"taus": 0.1, "mu": 3.0, "kx": 30.0, "kz": 30.0})
+preset("si-linB", SILinear, "Youdin & Johansen (2007) linB: tau_s = 0.1, eps = 0.2, K = 6; growth 0.01549 (64^2, 1 ppc).",
+       run={"tlim": 150.0, "dt_history": 0.25}, problem={"taus": 0.1, "mu": 0.2, "kx": 6.0, "kz": 6.0})
