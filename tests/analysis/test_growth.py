@@ -1,8 +1,9 @@
 """Growth fitting: exact on synthetic modes, the automatic window, the CLI on a real run.
 
-Synthetic data: eight fields carrying the same fastest mode, plus a second mode that decays
-relative to it (the start-up transient of a run) in different proportions per field, so the
-fields' growth rates over the whole run disagree and agree once the transient has decayed.
+Synthetic data: eight fields carrying the same fastest mode, plus a damped mode (the start-up
+transient of a run, like the drag-relaxation modes of the linear theory) in different
+proportions per field, so the fields' growth rates over the whole run disagree and agree once
+the transient has decayed.
 """
 
 import json
@@ -13,10 +14,10 @@ import pytest
 from dustygas.analysis.growth import MODE_FIELDS, fit_growth, linear_window, measure_growth
 from dustygas.errors import UserError
 
-from ..foundation._cli import cli
+from foundation._cli import cli
 
 S, W = 0.419, 0.348  # the mode: A ~ exp(-i (W + i S) t)
-S2, W2 = -0.0115, -1.12
+S2, W2 = -3.0, 2.0
 
 
 def synthetic(t, contamination):
@@ -40,14 +41,14 @@ def test_fit_of_a_pure_mode_is_exact():
 
 def test_window_skips_the_transient_and_recovers_the_rate():
     t = np.linspace(0, 6, 601)
-    modes = synthetic(t, 0.05)
+    modes = synthetic(t, 0.5)
     whole = measure_growth((t, modes), window=(0.0, 6.0))
-    assert whole.spread > 0.005  # the transient spoils the whole-run fit
+    assert whole.spread > 0.01  # the transient spoils the whole-run fit
     fit = measure_growth((t, modes))
     lo, hi = fit.window
     assert 0.0 < lo <= 3.0 and hi == 6.0
     assert fit.spread < 0.005
-    assert fit.growth_rate == pytest.approx(S, rel=3e-3)  # measured 6e-4
+    assert fit.growth_rate == pytest.approx(S, rel=1e-3)
 
 
 def test_window_ends_before_the_mode_turns_non_linear():

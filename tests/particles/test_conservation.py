@@ -20,7 +20,7 @@ from dustygas.particles import ParticleGridEngine, ParticleStore
 def random_box(kernel: str, integrator: str, shape=(16, 1, 12), seed=1) -> ParticleGridEngine:
     rng = np.random.default_rng(seed)
     mesh = Mesh(shape, (1.0, 1.0, 0.75))
-    gas = GridEngine(mesh, cs=1.0, reconstruction="ppm", riemann="hllc", cfl=0.4)
+    gas = GridEngine(mesh, cs=1.0, reconstruction="ppm", riemann="hllc", cfl=0.4 if mesh.ndim < 3 else 0.3)
     sh = tuple(reversed(shape))
     gas.set_primitive(1 + 0.3 * rng.random(sh), 0.2 + 0.1 * rng.standard_normal(sh), 0.1 * rng.standard_normal(sh),
                       -0.1 + 0.1 * rng.standard_normal(sh))
@@ -60,7 +60,7 @@ def test_total_momentum_is_conserved_to_round_off(kernel, integrator):
     drift = np.abs(p1 - p0).max() / scale / eng.t
     assert drift < 1e-12, drift
     # and the drag did exchange momentum: the particles' momentum changed by a good fraction
-    assert eng.cycle > 100
+    assert eng.cycle > 40
     assert np.abs(eng.particle_momentum() - part0).max() > 0.1 * np.abs(part0).max()
 
 

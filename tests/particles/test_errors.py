@@ -7,7 +7,7 @@ from dustygas.errors import ConfigError, SetupError
 from dustygas.grid import GridEngine, Mesh
 from dustygas.particles import ParticleGridEngine, ParticleStore
 
-from ..foundation._cli import cli
+from foundation._cli import cli
 
 
 @pytest.mark.parametrize("args, fragment", [

@@ -21,7 +21,7 @@ from dustygas import api
 from dustygas.analysis.growth import measure_growth
 from dustygas.io.rundir import RunDirectory
 
-from ..foundation._cli import PRELUDE, cli_popen, env
+from foundation._cli import PRELUDE, cli_popen, env
 from .test_restart import assert_identical, outputs
 
 LINA = 0.4190091323

@@ -185,6 +185,7 @@ def theory_for_run(run: str | Path) -> dict[str, float]:
         th = math.radians(p["theta"])
         kx, kz = p["k"] * math.sin(th), p["kz_sign"] * p["k"] * math.cos(th)
         vz = p.get("vz", 0.0)
+        vz = vz if vz == "settling" else float(vz)
     else:
         return {}
     mode = fastest_mode(StreamingParams(taus=p["taus"], mu=p["mu"], kx=kx, kz=kz, Pi=p["Pi"], vz=vz))

@@ -2,7 +2,7 @@
 
 ::
 
-    [particles]  lattice kernel integrator feedback cfl drag_cfl
+    [particles]  lattice kernel integrator feedback cfl drag_cfl smooth
 
 ``lattice`` particles per cell along each active axis (1: one particle per cell in 2D and 3D),
 ``kernel`` the assignment function, ``integrator`` the drag integrator, ``cfl`` the particle
@@ -30,6 +30,8 @@ PARTICLES: dict[str, Param] = {
     "feedback": Param(True, "back-reaction of the drag on the gas"),
     "cfl": Param(0.0, "particle Courant number (0: that of the gas)", min=0.0, max=1.0),
     "drag_cfl": Param(0.0, "if > 0, limit the step to drag_cfl times the smallest stopping time", min=0.0),
+    "smooth": Param(True, "gather and deposit through the grid-scale filter 1 - d^4/16 (removes the aliasing "
+                    "instability of drifting particles at the grid scale)"),
 }
 
 
@@ -59,4 +61,4 @@ def particle_engine_from_config(cfg: Config, gas, store: ParticleStore, t_stop, 
     """A :class:`ParticleGridEngine` (or subclass ``cls``) with the ``[particles]`` section of ``cfg``."""
     p = cfg.particles
     return cls(gas, store, t_stop, kernel=p.kernel, integrator=p.integrator, feedback=p.feedback,
-               cfl=p.cfl if p.cfl > 0 else None, drag_cfl=p.drag_cfl, **kwargs)
+               cfl=p.cfl if p.cfl > 0 else None, drag_cfl=p.drag_cfl, smooth=p.smooth, **kwargs)

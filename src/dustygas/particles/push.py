@@ -30,7 +30,7 @@ from numba import njit, prange
 
 from ..physics.drag import epstein_stopping_time_scalar
 from .boundaries import wrap_particle
-from .deposit import gas_fields
+from .deposit import filter_lines, gas_fields
 from .drag import kick
 from .interp import KERNEL_WIDTH, MAX_STENCIL, axis_weights, into_box
 from .store import cell_key, counting_sort, slab_starts
@@ -248,9 +248,27 @@ def _speeds(vmax):
     return vx, vy, vz
 
 
+@njit(cache=True, error_model="numpy")
+def _add_shear(fields, cells, sign, r0, r1) -> None:
+    """``fields[2] += sign q Omega x`` for rows ``r0 .. r1-1`` (``q Omega = jump / L_x``)."""
+    rate = sign * cells.jump / cells.lx
+    nx = cells.nx
+    for r in range(r0, r1):
+        for i in range(nx):
+            fields[2, r * nx + i] += rate * (cells.x0 + (i + 0.5) * cells.dx)
+
+
+@njit(cache=True, error_model="numpy")
+def _copy_rows(src, dst, nvar, ncell, c0, c1) -> None:
+    """``dst[:nvar, c0:c1] = src[:nvar, c0:c1]``."""
+    for v in range(nvar):
+        for c in range(c0, c1):
+            dst[v, c] = src[v, c]
+
+
 @njit(cache=True, parallel=True, error_model="numpy")
 def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, forces, method, feedback, gas_az, dt,
-                   shift_a, shift_b, fields, ext, starts, bounds, keys, axis, order_work, vmax):
+                   shift_a, shift_b, fields, ext, starts, bounds, keys, axis, order_work, vmax, smooth, work):
     """One particle stage (module docstring): ``PREDICT`` before the gas predictor, ``CORRECT``
     before the gas corrector.
 
@@ -278,6 +296,10 @@ def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, for
         (:func:`~dustygas.particles.deposit.chunk_bounds`).
     keys, axis, order_work, vmax
         Work arrays: cell keys ``(N,)``, the slab axis, ``(N,)`` int64, ``(nchunk, 3)``.
+    smooth, work
+        Apply the grid-scale filter ``F = 1 - δ⁴/16``
+        (:func:`~dustygas.particles.deposit.filter_lines`) to the gathered gas fields and to
+        the deposit, i.e. use the kernel ``F * W`` both ways; ``work`` is ``(4, ncell)``.
 
     Returns
     -------
@@ -285,11 +307,30 @@ def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, for
         ``CORRECT``: the largest ``|v_d|`` of the new velocities and whether the particles
         were re-sorted (``starts`` is then updated); ``PREDICT``: zeros and False.
     """
+    ncell = cells.nx * cells.ny * cells.nz
+    y_cells = int(round(shift_a / cells.dy)) if cells.ny > 1 else 0
+    ngroup = min(ncell, 64)
     if stage != PREDICT or feedback:  # a drift-only predictor needs neither
         rows = cells.ny * cells.nz
-        ngroup = min(rows, 64)
-        for g in prange(ngroup):
-            gas_fields(u, cells, gas_az, fields, ext, True, g * rows // ngroup, (g + 1) * rows // ngroup)
+        nrow = min(rows, 64)
+        for g in prange(nrow):
+            gas_fields(u, cells, gas_az, fields, ext, True, g * rows // nrow, (g + 1) * rows // nrow)
+        if smooth:  # the particles gather the filtered gas fields (kernel F*W)
+            if cells.jump != 0.0:  # full v_y in a shearing box: filter the periodic v_y + q Omega x
+                for g in prange(nrow):
+                    _add_shear(fields, cells, 1.0, g * rows // nrow, (g + 1) * rows // nrow)
+            for a in range(3):
+                n = cells.nx if a == 0 else (cells.ny if a == 1 else cells.nz)
+                if n > 1:
+                    nlines = ncell // n
+                    nl = min(nlines, 64)
+                    for g in prange(nl):
+                        filter_lines(fields, work, 4, a, cells, y_cells, g * nlines // nl, (g + 1) * nlines // nl)
+                    for g in prange(ngroup):
+                        _copy_rows(work, fields, 4, ncell, g * ncell // ngroup, (g + 1) * ncell // ngroup)
+            if cells.jump != 0.0:
+                for g in prange(nrow):
+                    _add_shear(fields, cells, -1.0, g * rows // nrow, (g + 1) * rows // nrow)
     nchunk = bounds.shape[0] - 1
     npair = (nchunk + 1) // 2  # chunks 2c in the first pass, 2c + 1 in the second
     for colour in range(2):
@@ -298,10 +339,19 @@ def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, for
             if c < nchunk:
                 particle_chunk(stage, pos, vel, species, mass, fields, cells, order, sp, forces, method, feedback, dt,
                                shift_a, shift_b, ext, keys, axis, vmax, c, starts[bounds[c]], starts[bounds[c + 1]])
+    if smooth and feedback:  # ... and deposit through the same kernel F*W
+        for a in range(3):
+            n = cells.nx if a == 0 else (cells.ny if a == 1 else cells.nz)
+            if n > 1:
+                nlines = ncell // n
+                nl = min(nlines, 64)
+                for g in prange(nl):
+                    filter_lines(ext, work, 3, a, cells, y_cells, g * nlines // nl, (g + 1) * nlines // nl)
+                for g in prange(ngroup):
+                    _copy_rows(work, ext, 3, ncell, g * ncell // ngroup, (g + 1) * ncell // ngroup)
     if stage != CORRECT:
         return 0.0, 0.0, 0.0, False
     vx, vy, vz = _speeds(vmax)
-    ncell = cells.nx * cells.ny * cells.nz
     resorted = counting_sort(keys, ncell, pos, vel, species, pid, mass, order_work)
     nslab = starts.shape[0] - 1
     slab_starts(keys, ncell // nslab, nslab, starts)

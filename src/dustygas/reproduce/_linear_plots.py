@@ -108,12 +108,19 @@ def plot_growth_map(gmap, path: Path, title: str = "") -> Path:
 
 
 def plot_growth_vs_k(k, curves: list[tuple[str, np.ndarray]], path: Path, title: str, note: str,
-                     ylim=(1e-6, 1.0)) -> Path:
-    """Growth rate (log axis; damped or non-growing points left out) versus |K|."""
+                     ylim=(1e-6, 1.0), markers: Sequence[tuple[float, float, int]] = ()) -> Path:
+    """Growth rate (log axis; damped or non-growing points left out) versus |K|.
+
+    ``markers``: measured points ``(K, s, index of the curve they belong to)``, drawn as
+    crosses in that curve's colour (thesis Fig 4.6).
+    """
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.2, 4.8), constrained_layout=True)
+    lines = []
     for label, s in curves:
-        ax.loglog(k, np.where(s > 0, s, np.nan), label=label, lw=1.4)
+        lines += ax.loglog(k, np.where(s > 0, s, np.nan), label=label, lw=1.4)
+    for kk, s, i in markers:
+        ax.plot([kk], [s], marker="x", ms=9, mew=2.2, ls="none", color=lines[i].get_color())
     ax.set_xlabel(r"wavenumber $|K| = |k|\eta r$")
     ax.set_ylabel(r"growth rate $s/\Omega$ of the fastest mode")
     ax.set_ylim(*ylim)
