@@ -5,7 +5,8 @@ Coriolis and tidal source terms (Omega = 1, q = 3/2), shear-periodic radial boun
 the conservative ghost remap and the radial flux correction, periodic other axes, and a flow
 perturbed by 1 % noise. A measurement times ``engine.advance(engine.timestep())`` (one call
 into compiled code per step, Courant reduction included) for a few seconds after warm-up and
-keeps the best of ``--repeat`` runs (the machine is shared; the median is printed too).
+keeps the best of ``--repeat`` runs (the machine is shared; the median is printed too); the
+thread counts alternate within each repeat, so the 2T/1T ratio compares runs taken together.
 
 Athena 4.2 anchors (one core of this machine, gas only, ``numbers.md`` §2; problems hb3 in 2D
 x-z and hgb in 3D). Athena has no VL+PPM figures, so our VL2+PPM rows are compared with its CTU
@@ -86,23 +87,31 @@ def build(shape, integrator, reconstruction, riemann) -> GridEngine:
     return eng
 
 
-def measure(shape, scheme, threads: int, seconds: float, repeat: int) -> list[float]:
+def rate(eng: GridEngine, threads: int, seconds: float) -> float:
+    """Zone-cycles per second of ``eng`` on ``threads`` threads, timed for ``seconds``."""
     numba.set_num_threads(threads)
+    eng.advance(eng.timestep())
+    steps = 0
+    start = time.perf_counter()
+    while True:
+        for _ in range(5):
+            eng.advance(eng.timestep())
+        steps += 5
+        elapsed = time.perf_counter() - start
+        if elapsed >= seconds:
+            return steps * eng.work_units / elapsed
+
+
+def measure(shape, scheme, threads: list[int], seconds: float, repeat: int) -> dict[int, list[float]]:
+    """Rates for each thread count; the thread counts alternate within each repeat, so that a
+    change of the machine's load hits all of them alike."""
     eng = build(shape, *scheme)
     for _ in range(5):  # compile (cached after the first run) and warm caches
         eng.advance(eng.timestep())
-    rates = []
+    rates: dict[int, list[float]] = {t: [] for t in threads}
     for _ in range(repeat):
-        steps = 0
-        start = time.perf_counter()
-        while True:
-            for _ in range(5):
-                eng.advance(eng.timestep())
-            steps += 5
-            elapsed = time.perf_counter() - start
-            if elapsed >= seconds:
-                break
-        rates.append(steps * eng.work_units / elapsed)
+        for t in threads:
+            rates[t].append(rate(eng, t, seconds))
     return rates
 
 
@@ -128,16 +137,14 @@ def main(argv=None) -> int:
         for text in args.schemes:
             scheme = tuple(text.split("/"))
             ref, label = anchor(size, *scheme)
-            best1 = None
+            rates = measure(shape, scheme, threads, args.seconds, args.repeat)
+            best1 = max(rates[1]) if 1 in rates else None
             for t in threads:
-                rates = measure(shape, scheme, t, args.seconds, args.repeat)
-                best = max(rates)
-                if t == 1:
-                    best1 = best
+                best = max(rates[t])
                 ratio = f"{best / ref:6.2f}" if ref and t == 1 else ""
                 speedup = f"{best / best1:6.2f}" if best1 and t > 1 else ""
                 ath = f"{ref:8.2g}" if ref and t == 1 else ""
-                print(f"{case:9} {text:18} {t:3d} {best:9.3g} {statistics.median(rates):9.3g}  {ath:>8} {ratio:>6} "
+                print(f"{case:9} {text:18} {t:3d} {best:9.3g} {statistics.median(rates[t]):9.3g}  {ath:>8} {ratio:>6} "
                       f"{speedup:>6}  {label if t == 1 else ''}", flush=True)
     load = os.getloadavg()
     print(f"# done {time.strftime('%H:%M')}  load {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")

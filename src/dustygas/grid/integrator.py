@@ -166,8 +166,9 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
                               bflux, store, y_source, rates, bads, want_rate, shearing,
                               c * npen // nchunk, (c + 1) * npen // nchunk)
             first = False
-        # 3. radial fluxes of a shearing box; budget
-        if shearing:
+        # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
+        #    step's net update, like the VL2 predictor: conservation needs only the others)
+        if shearing and weight != 0.0:
             plane_flux = np.zeros(nz)
             nitems = 4 * nz
             if nz > 1 or ny >= PARALLEL_REMAP_NY:

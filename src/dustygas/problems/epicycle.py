@@ -28,7 +28,7 @@ class Epicycle(Problem):
     name = "epicycle"
     summary = "Uniform epicyclic oscillation in a 2D shearing box (frequency kappa = Omega for q = 3/2)."
     schema = {
-        "run": with_defaults(RUN_SCHEMA, tlim=20.0 * math.pi),
+        "run": with_defaults(RUN_SCHEMA, tlim=20.0 * math.pi, dt_history=0.05),
         "grid": with_defaults(GRID, nx=32, ny=32),
         "scheme": SCHEME,
         "gas": GAS,

@@ -54,7 +54,7 @@ class ShearingWave(Problem):
     name = "shearing-wave"
     summary = "Nearly incompressible vortical shearing wave through its swing (Kelvin's closed form)."
     schema = {
-        "run": with_defaults(RUN_SCHEMA, tlim=8.0 / 3.0),
+        "run": with_defaults(RUN_SCHEMA, tlim=8.0 / 3.0, dt_history=0.01),
         "grid": with_defaults(GRID, nx=64, ny=64, lx=0.25, ly=0.25),
         "scheme": SCHEME,
         "gas": GAS,

@@ -30,7 +30,7 @@ class ShockTube(Problem):
     name = "shocktube"
     summary = "Isothermal shock tube along x (rarefaction + shock); exact Riemann solution for comparison."
     schema = {
-        "run": with_defaults(RUN_SCHEMA, tlim=0.2),
+        "run": with_defaults(RUN_SCHEMA, tlim=0.2, dt_history=0.005),
         "grid": with_defaults(GRID, nx=256),
         "scheme": SCHEME,
         "gas": GAS,

@@ -52,7 +52,7 @@ class SoundWave(Problem):
     name = "soundwave"
     summary = "Linear isothermal sound wave in a periodic box (1D, or oblique in 2D/3D); exact solution."
     schema = {
-        "run": with_defaults(RUN_SCHEMA, tlim=1.0),
+        "run": with_defaults(RUN_SCHEMA, tlim=1.0, dt_history=0.01),
         "grid": with_defaults(GRID, nx=64),
         "scheme": SCHEME,
         "gas": GAS,
