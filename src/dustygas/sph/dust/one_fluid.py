@@ -287,7 +287,7 @@ class OneFluidDust(SPHModule):
         if self.full:
             dt = min(dt, o.c_drag * float(np.min(ex[TS])))
         if o.c_eps > 0:
-            eps = np.maximum(self._current_eps(engine), 0.0)
+            eps = np.maximum(self.dust_fractions(engine), 0.0)
             with np.errstate(divide="ignore", invalid="ignore"):
                 out = ex[OUT]
                 pos = out > 0
@@ -303,17 +303,18 @@ class OneFluidDust(SPHModule):
         return dt
 
     # ------------------------------------------------------------------ diagnostics
-    def _current_eps(self, engine) -> np.ndarray:
+    def dust_fractions(self, engine) -> np.ndarray:
+        """Current :math:`\\epsilon` of every particle (:math:`S^2/\\rho` for the square-root variable)."""
         ex = engine.particles.extra
         return ex[SQRT] ** 2 / engine.rho if self.sqrt_variable else ex[EPS]
 
     def dust_mass(self, engine) -> float:
         """:math:`\\sum_a m_a\\epsilon_a`."""
-        return float(np.sum(engine.particles.mass * self._current_eps(engine)))
+        return float(np.sum(engine.particles.mass * self.dust_fractions(engine)))
 
     def history(self, engine, out: dict[str, float]) -> None:
         p = engine.particles
-        eps = self._current_eps(engine)
+        eps = self.dust_fractions(engine)
         out["dust_mass"] = float(np.sum(p.mass * eps))
         out["min_dust_fraction"] = float(eps.min())
         out["max_dust_fraction"] = float(eps.max())
