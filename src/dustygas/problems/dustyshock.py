@@ -80,7 +80,7 @@ class DustyShock(Problem):
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=0.2, dt_snapshot=0.05, log_every=1000),
         "sph": with_defaults(SPH_SCHEMA),
-        "dust": with_defaults(DUST_SCHEMA, K=1000.0, reconstruction="none"),
+        "dust": with_defaults(DUST_SCHEMA, K=1000.0, reconstruction="mc", integration="implicit"),
         "problem": {
             "nx": Param(256, "gas particles in -0.5 < x < 0 (left state)", min=8),
             "rho_left": Param(1.0, "left gas density", min=0.0, min_open=True),

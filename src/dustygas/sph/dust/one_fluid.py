@@ -25,7 +25,7 @@ diffusion limit :math:`\\Delta t \\le C_\\epsilon h^2/(\\epsilon t_s c_s^2)` of 
 eq. 28) for the terminal-velocity model, and for both models
 :math:`\\Delta t \\le C_\\epsilon\\,\\epsilon_a/\\sum_b|\\dot\\epsilon_{ab}|` so that no particle can give away
 more dust than it holds in one step with the upwind exchange (whose outflow is proportional to
-:math:`\epsilon_a`; ``c_eps = 0`` switches both off, as in the thesis's CHANGA runs).
+:math:`\\epsilon_a`; ``c_eps = 0`` switches both off, as in the thesis's CHANGA runs).
 
 **Clamping** (thesis §3.2.4) is off unless asked for. With ``clamp = True`` a dust fraction that
 leaves :math:`[\\epsilon_{\\rm floor}, \\epsilon_{\\rm ceiling}]` after a step is set to the bound; every
