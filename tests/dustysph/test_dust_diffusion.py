@@ -41,12 +41,14 @@ def test_phantom_setup_upwind():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("variant, measured", [(("dust.exchange=arithmetic",), 1.1e-3),
-                                               (("dust.exchange=arithmetic", "dust.variable=sqrt-rho-eps"), 2.5e-3)])
-def test_phantom_setup_other_discretisations(variant, measured):
+@pytest.mark.parametrize("variant, measured, mass_tol", [
+    (("dust.exchange=arithmetic",), 1.1e-3, 1e-13),
+    (("dust.exchange=arithmetic", "dust.variable=sqrt-rho-eps"), 2.5e-3, 3e-4)])
+def test_phantom_setup_other_discretisations(variant, measured, mass_tol):
     """The same with the arithmetic exchange (L2 1.09e-3) and with the sqrt(rho eps) variable of
-    Ballabio et al. (2018) (2.49e-3): both within Phantom's 2.6e-3; dust mass to 1e-13 (the particles
-    do not move, so the square-root variable conserves it exactly too)."""
+    Ballabio et al. (2018) (2.49e-3): both within Phantom's 2.6e-3. Dust mass: exact (1e-13) with eps;
+    with S = sqrt(rho eps) the pair terms conserve sum m S^2/rho only in the time-continuous limit,
+    a step changes it by dt^2 sum m dS^2/rho (measured 1.6e-4 after 200 steps, bound 3e-4)."""
     worst, dm, _ = _max_l2(*variant)
     assert worst < PHANTOM_TOL and worst < 1.05 * measured, worst
-    assert dm < 1e-13
+    assert dm < mass_tol

@@ -39,7 +39,7 @@ than it holds (possible with the arithmetic exchange), so :math:`s'_a` is always
 of non-negative sizes with non-negative weights and stays between the smallest and largest size
 involved. In the kick-drift-kick step each half kick applies this update with the exchange rates
 (and senders' sizes) of the last derivative evaluation, so the dust-mass-weighted mean size
-:math:`\sum m\epsilon s/\sum m\epsilon` is conserved to first order in :math:`\Delta t`, not to round-off
+:math:`\\sum m\\epsilon s/\\sum m\\epsilon` is conserved to first order in :math:`\\Delta t`, not to round-off
 (the thesis's scheme favours sizes that stay positive and bounded over exact conservation).
 
 Examples

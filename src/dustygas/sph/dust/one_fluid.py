@@ -21,8 +21,8 @@ may carry its own grain size, advected with the exchanged dust and grown or frag
 (:mod:`~dustygas.sph.dust.grain_size`).
 
 Time step (besides Courant and acceleration): the dust-fraction criterion ``c_eps`` -- the
-diffusion limit :math:`\\Delta t \\le C_\\epsilon h^2/(\\epsilon t_s c_s^2)` of Price & Laibe (2015,
-eq. 28) for the terminal-velocity model, and for both models
+diffusion limit :math:`\\Delta t \\le C_\\epsilon h^2/(\\epsilon t_s c_s^2)` of Price & Laibe (2015)
+for the terminal-velocity model, and for both models
 :math:`\\Delta t \\le C_\\epsilon\\,\\epsilon_a/\\sum_b|\\dot\\epsilon_{ab}|` so that no particle can give away
 more dust than it holds in one step with the upwind exchange (whose outflow is proportional to
 :math:`\\epsilon_a`; ``c_eps = 0`` switches both off, as in the thesis's CHANGA runs).
@@ -34,8 +34,10 @@ such event is counted and the dust mass it created or destroyed is summed (histo
 Without clamping a negative dust fraction is kept (and shows in ``min_dust_fraction``).
 
 Total dust mass :math:`\\sum_a m_a\\epsilon_a` is conserved to round-off by the exchange (and
-reported as ``dust_mass``); with :math:`S` it is conserved by the exchange but not exactly by the
-compression term :math:`-\\tfrac12 S\\nabla\\cdot\\mathbf v` (exactly for particles at rest).
+reported as ``dust_mass``); with :math:`S` the exchange conserves :math:`\\sum_a m_a S_a^2/\\rho_a` only in
+the time-continuous limit (a step of :math:`S` changes :math:`S^2` by :math:`\\Delta t^2\\dot S^2` too) and the
+compression term :math:`-\\tfrac12 S\\nabla\\cdot\\mathbf v` only as far as the summed density follows
+:math:`\\nabla\\cdot\\mathbf v`: the price of a dust fraction that cannot become negative.
 """
 
 from __future__ import annotations
@@ -239,11 +241,12 @@ class OneFluidDust(SPHModule):
         for name, value in new.items():
             ex[name][...] = value
         if self.full and engine.eos.evolves_energy:
-            # Drag heating equal to the kick's exact loss of relative kinetic energy
-            # eps (1 - eps) |dv|^2 / 2 to the drag: -eps (1 - eps) dt a_d . (dv_new - dt a_d / 2) per unit
-            # mass; the base kick already added dt * eps |dv|^2 / t_s (times 1 - eps).
+            # Drag heating = the work of the drag on the relative velocity over this kick, at the mean of
+            # the old and new relative velocities: -eps (1 - eps) dt a_d . (dv_old + dv_new)/2 per unit
+            # mass. When the drag acts alone (the dustybox) this is the exact loss of eps (1 - eps) |dv|^2/2;
+            # the base kick already added dt * eps |dv|^2 / t_s (times 1 - eps).
             a_d = ex[DRAG]
-            dv_mid = ex[DV] - 0.5 * dt * a_d
+            dv_mid = ex[DV] - 0.5 * dt * ex[DDV]
             eps = ex[EPS]
             engine.particles.u += -eps * dt * np.einsum("ij,ij->i", a_d, dv_mid) - dt * ex[HEAT]
         if not final:

@@ -8,7 +8,7 @@ Each pair contributes a dust-fraction rate :math:`e_{ab}` to particle :math:`a`
 (:math:`\\dot\\epsilon_a = \\sum_b e_{ab}`) with :math:`m_a e_{ab} = -m_b e_{ba}`: dust mass is exchanged,
 never created, whatever the pair weights (thesis eq. 3.5).
 
-Terminal-velocity approximation (thesis eqs. 2.10-2.11; Price & Laibe 2015, eq. 43): the flux
+Terminal-velocity approximation (thesis eqs. 2.10-2.11; Price & Laibe 2015): the flux
 :math:`\\epsilon(1-\\epsilon)\\rho\\Delta\\mathbf v = \\epsilon t\\nabla P` is discretised with the
 second-derivative operator
 
@@ -17,7 +17,7 @@ second-derivative operator
 ``arithmetic``: :math:`\\mathcal D_{ab} = \\epsilon_a t_a + \\epsilon_b t_b` (the average of thesis eq. 3.4),
 ``upwind``: :math:`\\mathcal D_{ab} = \\epsilon_{\\rm up}(t_a + t_b)` with :math:`\\epsilon_{\\rm up}` the dust
 fraction of the particle that gives dust away (thesis eqs. 3.15-3.17). With the square-root variable
-:math:`S = \\sqrt{\\rho\\epsilon}` (Ballabio et al. 2018, eq. 29)
+:math:`S = \\sqrt{\\rho\\epsilon}` (Ballabio et al. 2018)
 
 .. math:: \\dot S_a = -\\frac12\\sum_b \\frac{m_b S_b}{\\rho_b}\\left(\\frac{t_a}{\\rho_a} + \\frac{t_b}{\\rho_b}\\right)
           (P_a - P_b)\\frac{\\bar F_{ab}}{r_{ab}} - \\frac{S_a}{2}\\nabla\\cdot\\mathbf v_a,

@@ -9,10 +9,11 @@ reconstruction of Price & Laibe (2020) -- and the drag heating to the gas (eq. 2
 
 Time integration: ``explicit`` drag limits the step to :math:`C_{\\rm drag}\\min t_s` over the
 interacting pairs (eq. 2.15); ``implicit`` uses the pairwise exponential average and has no drag
-limit. With an adiabatic gas the heating of each kick is the kick's exact loss of kinetic energy
-to the drag, :math:`-\\Delta t\\sum_j m_j\\mathbf a^{\\rm drag}_j\\cdot(\\mathbf v^{\\rm new}_j - \\tfrac12\\Delta t\\,\\mathbf a^{\\rm drag}_j)`
-over both species, distributed over the gas particles in proportion to their heating rates, so that
-kinetic plus thermal energy is conserved to round-off and not only to the integrator's order.
+limit. With an adiabatic gas the heating of each kick is the work of the drag over the kick at the
+mean of the old and new velocities, :math:`-\\Delta t\\sum_j m_j\\mathbf a^{\\rm drag}_j\\cdot(\\mathbf v^{\\rm old}_j + \\mathbf v^{\\rm new}_j)/2`
+over both species, distributed over the gas particles in proportion to their heating rates. Where
+only the drag acts (the dustybox) this is the kick's exact loss of kinetic energy, so kinetic plus
+thermal energy is conserved to round-off and not only to the integrator's order.
 
 **Resolution.** Laibe & Price (2012a) showed that the two-fluid drag over-damps sound waves
 unless the gas smoothing length resolves the stopping length, :math:`h < c_s t_s`. Where a gas
@@ -200,11 +201,11 @@ class TwoFluidDust(SPHModule):
         if not (engine.eos.evolves_energy and self.options.heating):
             return
         p = engine.particles
-        a_d = ex[ACC]
-        lost = -dt * float(np.sum(p.mass * np.einsum("ij,ij->i", a_d, p.vel - 0.5 * dt * a_d)))
+        a_d = ex[ACC]  # work of the drag over the kick at the mean of the old and new velocities
+        lost = -dt * float(np.sum(p.mass * np.einsum("ij,ij->i", a_d, p.vel - 0.5 * dt * engine.acc)))
         given = dt * float(np.dot(p.mass, q))
         if given != 0.0 and lost != 0.0:
-            p.u += (lost / given - 1.0) * dt * q  # heating of this kick = its exact kinetic-energy loss
+            p.u += (lost / given - 1.0) * dt * q  # heating of this kick = the kinetic energy the drag removed
 
     def timestep(self, engine) -> float:
         return self.options.c_drag * float(np.min(engine.particles.extra[TMIN], initial=math.inf))
