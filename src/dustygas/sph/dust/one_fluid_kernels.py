@@ -56,6 +56,23 @@ terminal-velocity approximation only the last (advective) heating term applies; 
 
 The pass also sums, per particle, the dust received (:math:`\\sum_b e_{ab} > 0`, with and without the
 sender's grain size) and given away, for :mod:`~dustygas.sph.dust.grain_size` and the time step.
+
+Where this differs from the thesis as printed
+---------------------------------------------
+* Eq. 3.4 writes the second kernel gradient as :math:`\\nabla_b W_{ab}(h_b) = -\\nabla_a W_{ab}(h_b)`,
+  which turns the sum into the difference of the two terms and does not conserve dust mass
+  (eq. 3.5 then fails); the conservative form, used here, has :math:`\\nabla_a W_{ab}(h_b)` (the
+  symmetric divergence of Price 2012). The sign of :math:`\\dot\\epsilon_{ab}` in eqs. 3.15-3.16 follows.
+* Eq. 3.17 weights the two cases with :math:`m_b` and :math:`m_a`; the pair's two contributions then
+  cancel only for equal masses. Here both cases carry :math:`m_b` and only the dust fraction is
+  upwinded, which conserves dust mass for any masses.
+* Eq. 2.11d prints :math:`-\\epsilon t_s(\\nabla P/\\rho\\cdot\\nabla)u`; the gas moves at :math:`\\mathbf v - \\epsilon\\Delta\\mathbf v`
+  relative to the barycentre, so the advective term is :math:`+\\epsilon\\Delta\\mathbf v\\cdot\\nabla u` (eq.
+  2.9e's sign), as implemented.
+* Eq. 2.9e's heating :math:`\\epsilon w^2/t_s` uses eq. 2.6's single-grain :math:`t_s`, whereas eq. 2.9d's
+  drag :math:`-w/(t_s(1-\\epsilon))` uses the mixture time :math:`t_s(1-\\epsilon)`; with the mixture time
+  :math:`t` of Laibe & Price (2014a) throughout, the heating that balances the drag is
+  :math:`\\epsilon\\Delta v^2/t` per unit mass of gas.
 """
 
 from __future__ import annotations
