@@ -372,17 +372,19 @@ class NeighbourFinder:
         return _bin(pos, origin, inv_size, ncell, per)[1]
 
     def find(self, pos: np.ndarray, h: np.ndarray, query_pos: np.ndarray | None = None,
-             query_h: np.ndarray | None = None) -> NeighbourList:
+             query_h: np.ndarray | None = None, allow_overlap: bool = False) -> NeighbourList:
         """Neighbours of every query particle among the sources ``(pos, h)``.
 
         Without ``query_pos`` the sources query themselves (self excluded). Raises
-        :class:`SimulationError` if two particles sit at exactly the same position.
+        :class:`SimulationError` if two particles sit at exactly the same position, unless
+        ``allow_overlap`` (particles of different species, e.g. a dust particle on top of a gas
+        particle, may coincide: their pair terms vanish).
         """
         same = query_pos is None
         qpos = pos if same else query_pos
         qh = h if same else query_h
         if self.choose(h if same else np.concatenate([h, qh])) == "tree":
-            return self._find_tree(pos, h, qpos, qh, same)
+            return self._find_tree(pos, h, qpos, qh, same, allow_overlap)
         hmax = float(max(h.max(initial=0.0), qh.max(initial=0.0)))
         origin, inv_size, ncell, length, per = self._grid([pos] if same else [pos, qpos], hmax)
         start, sorder = _bin(pos, origin, inv_size, ncell, per)
@@ -401,9 +403,9 @@ class NeighbourFinder:
             if need <= self._capacity:
                 break
             self._capacity = int(need * 1.25) + 8
-        return self._finish(index, count, overlap, qpos, qh, qorder)
+        return self._finish(index, count, overlap, qpos, qh, qorder, allow_overlap)
 
-    def _find_tree(self, pos, h, qpos, qh, same) -> NeighbourList:
+    def _find_tree(self, pos, h, qpos, qh, same, allow_overlap=False) -> NeighbourList:
         from .kdtree import build_tree, tree_search
 
         lo, length, per = self.box.arrays()
@@ -422,11 +424,11 @@ class NeighbourFinder:
             if need <= self._capacity:
                 break
             self._capacity = int(need * 1.25) + 8
-        return self._finish(index, count, overlap, qpos, qh, qtree[0])
+        return self._finish(index, count, overlap, qpos, qh, qtree[0], allow_overlap)
 
     @staticmethod
-    def _finish(index, count, overlap, qpos, qh, order) -> NeighbourList:
-        bad = np.flatnonzero(overlap >= 0)
+    def _finish(index, count, overlap, qpos, qh, order, allow_overlap=False) -> NeighbourList:
+        bad = np.flatnonzero(overlap >= 0) if not allow_overlap else np.empty(0, np.int64)
         if bad.size:
             a = int(bad[0])
             raise SimulationError(
