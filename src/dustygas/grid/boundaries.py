@@ -1,0 +1,335 @@
+"""Ghost zones: the one place of the grid engine that knows about neighbours.
+
+Every stage of the integrator starts by calling :func:`fill_ghosts` on the state it reads;
+the sweep kernels only ever read ghost cells, they never ask where the data came from. A new
+kind of boundary (another MPI rank's data, a wall with inflow...) is a new code here and
+nothing else changes.
+
+Kinds, registered by name in :data:`BOUNDARY_KINDS` (each side of each axis has one):
+
+periodic
+    ghost = the cell one box length away.
+shear-periodic
+    (x only, both sides) the radial images of a shearing box slide in y by
+    ``q Omega Lx t`` (:func:`~dustygas.grid.shearing_box.shear_offset`): each ghost column
+    is the periodic column one box length away shifted conservatively by that offset
+    (:func:`~dustygas.grid.remap.shift_column`: integer shift plus a reconstructed fractional
+    one, as in Stone & Gardiner 2010, §3), and unless the velocity is stored relative to the
+    shear, ``rho v_y`` gains ``+/- q Omega Lx rho`` on the inner/outer side.
+outflow
+    zero gradient: ghost = the last domain cell.
+reflecting
+    mirror image with the normal momentum reversed.
+hydrostatic
+    (z only, with vertical gravity) an open boundary for a stratified isothermal box: the
+    velocity of the last domain cell is copied (the vertical one only if it points out of
+    the box, else it is set to zero) and the density continues the hydrostatic profile
+    ``rho ~ exp(-z^2 / 2H^2)``, ``H = c_s / Omega``, so that the boundary does not pull the
+    atmosphere down as zero-gradient ``outflow`` does.
+
+Ghosts are filled axis by axis, z, y, then x, each over the full extent of the other two
+axes, so edges and corners are right too (the particle module's TSC weights need them).
+
+:func:`correct_radial_fluxes` makes a shear-periodic box conserve mass (and obey the
+y-momentum budget) to round-off: the flux through the inner radial face is the same
+physical flux as the one through the outer face one shear offset away, so both are replaced
+by the average of their own value and the conservatively remapped value of the other side
+(with the ``q Omega Lx`` shift of ``rho v_y``). The sums over each face then agree exactly:
+``sum F_rho(in) = sum F_rho(out)`` and ``sum F_y(out) - sum F_y(in) = -q Omega Lx sum F_rho``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from ..errors import SetupError
+from .remap import shift_column
+from .shearing_box import shear_offset
+
+__all__ = [
+    "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
+    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
+    "correct_radial_fluxes",
+]
+
+PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
+#: name -> code of the boundary kinds
+BOUNDARY_KINDS = {"periodic": PERIODIC, "shear-periodic": SHEAR_PERIODIC, "outflow": OUTFLOW,
+                  "reflecting": REFLECTING, "hydrostatic": HYDROSTATIC}
+
+
+class Boundaries(NamedTuple):
+    """Boundary kind of each face and what the shear-periodic one needs."""
+
+    x_lo: int
+    x_hi: int
+    y_lo: int
+    y_hi: int
+    z_lo: int
+    z_hi: int
+    q_omega_lx: float  # speed at which the radial images slide in y
+    vy_jump: float  # q Omega Lx if the full v_y is stored, 0 under orbital advection
+    remap_method: int  # reconstruction of the fractional shift
+    remap_limiter: int
+    half_inv_h2: float  # 1 / (2 H^2) = Omega^2 / (2 c_s^2) of the hydrostatic boundary
+
+    @property
+    def shearing(self) -> bool:
+        return self.x_lo == SHEAR_PERIODIC
+
+
+def make_boundaries(
+    kinds: tuple[str, str, str],
+    active: tuple[bool, bool, bool],
+    q_omega_lx: float = 0.0,
+    vy_jump: float = 0.0,
+    remap_method: int = 1,
+    remap_limiter: int = 2,
+    scale_height: float = 0.0,
+) -> Boundaries:
+    """Boundaries from one kind name per axis (both sides alike); inactive axes are ignored.
+
+    >>> b = make_boundaries(("shear-periodic", "periodic", "outflow"), (True, True, False), 1.5, 1.5)
+    >>> b.shearing, b.y_lo == PERIODIC
+    (True, True)
+    """
+    codes = []
+    for axis, (name, on) in enumerate(zip(kinds, active)):
+        if name not in BOUNDARY_KINDS:
+            raise SetupError(f"boundary '{name}' unknown: choose one of {', '.join(BOUNDARY_KINDS)}")
+        code = BOUNDARY_KINDS[name] if on else PERIODIC
+        if code == SHEAR_PERIODIC and axis != 0:
+            raise SetupError("shear-periodic boundaries are radial: only the x axis can have them")
+        if code == HYDROSTATIC and (axis != 2 or not scale_height > 0):
+            raise SetupError("hydrostatic boundaries are vertical: z axis only, with vertical gravity on")
+        codes += [code, code]
+    half_inv_h2 = 0.5 / scale_height**2 if scale_height > 0 else 0.0
+    return Boundaries(*codes, float(q_omega_lx), float(vy_jump), int(remap_method), int(remap_limiter), half_inv_h2)
+
+
+@njit(cache=True, error_model="numpy")
+def _source_index(kind: int, lower: bool, m: int, n: int, g: int) -> int:
+    """Index (ghost-padded) of the cell a ghost copies; ``m`` counts outwards from the domain."""
+    if lower:
+        if kind == PERIODIC:
+            return g - 1 - m + n
+        if kind == OUTFLOW or kind == HYDROSTATIC:
+            return g
+        return g + m  # reflecting
+    if kind == PERIODIC:
+        return g + m
+    if kind == OUTFLOW or kind == HYDROSTATIC:
+        return g + n - 1
+    return g + n - 1 - m  # reflecting
+
+
+@njit(cache=True, error_model="numpy")
+def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
+    """Copy-type kinds (periodic, outflow, reflecting) along ``axis`` for lines ``l0 .. l1-1``
+    (rows j for z, planes k for y and x), over the full extent of the other axes."""
+    nyt, nxt = u.shape[2], u.shape[3]
+    flip = 1 + axis  # momentum component normal to this axis
+    for side in range(2):
+        kind = kind_lo if side == 0 else kind_hi
+        for m in range(g):
+            dst = g - 1 - m if side == 0 else g + n + m
+            src = _source_index(kind, side == 0, m, n, g)
+            for v in range(4):
+                sign = -1.0 if (kind == REFLECTING and v == flip) else 1.0
+                for line in range(l0, l1):
+                    if axis == 0:  # short strided lines: index directly
+                        for j in range(nyt):
+                            u[v, line, j, dst] = sign * u[v, line, j, src]
+                        continue
+                    # views of a ghost row and its source row (indices from 0: no wraparound)
+                    if axis == 2:
+                        to, frm = u[v, dst, line, :], u[v, src, line, :]
+                    else:
+                        to, frm = u[v, line, dst, :], u[v, line, src, :]
+                    for i in range(nxt):
+                        to[i] = sign * frm[i]
+
+
+@njit(cache=True, error_model="numpy")
+def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
+    """Open vertical boundaries of a stratified isothermal box, rows ``l0 .. l1-1``."""
+    nz, gz = lay.nz, lay.gz
+    for side in range(2):
+        src = gz if side == 0 else gz + nz - 1
+        z_src = sp.z0 + (src - gz + 0.5) * sp.dz
+        for m in range(gz):
+            dst = gz - 1 - m if side == 0 else gz + nz + m
+            z_dst = sp.z0 + (dst - gz + 0.5) * sp.dz
+            factor = math.exp(-(z_dst * z_dst - z_src * z_src) * bc.half_inv_h2)
+            for line in range(l0, l1):
+                for v in range(3):
+                    to, frm = u[v, dst, line, :], u[v, src, line, :]
+                    for i in range(to.shape[0]):
+                        to[i] = factor * frm[i]
+                to, frm = u[3, dst, line, :], u[3, src, line, :]
+                for i in range(to.shape[0]):
+                    outward = frm[i] < 0.0 if side == 0 else frm[i] > 0.0
+                    to[i] = factor * frm[i] if outward else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _shear_ghosts(u, item, t, lay, sp, bc, col, out, work):
+    """Radial ghosts of a shearing box: periodic in x, shifted in y (see :func:`ghost_lines`
+    for the items: (side, plane) if y is inactive, else (side, variable, plane))."""
+    nx, ny, g, gy = lay.nx, lay.ny, lay.gx, lay.gy
+    nyt = u.shape[2]
+    side = item % 2
+    jump = bc.vy_jump if side == 0 else -bc.vy_jump
+    if ny == 1:  # radial-vertical plane: no azimuthal shift, only the velocity jump
+        k = item // 2
+        for m in range(g):
+            dst = g - 1 - m if side == 0 else g + nx + m
+            src = g - 1 - m + nx if side == 0 else g + m
+            u[0, k, 0, dst] = u[0, k, 0, src]
+            u[1, k, 0, dst] = u[1, k, 0, src]
+            u[2, k, 0, dst] = u[2, k, 0, src] + jump * u[0, k, 0, src]
+            u[3, k, 0, dst] = u[3, k, 0, src]
+        return
+    v = (item // 2) % 4
+    k = item // 8
+    s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy
+    shift = s if side == 0 else -s
+    for m in range(g):
+        dst = g - 1 - m if side == 0 else g + nx + m
+        src = g - 1 - m + nx if side == 0 else g + m
+        # the variable, and for rho v_y also rho (the velocity jump), remapped
+        for slot in range(2 if v == 2 else 1):
+            column = u[v if slot == 0 else 0, k, gy:gy + ny, src]
+            for j in range(ny):
+                col[j] = column[j]
+            shift_column(col, ny, shift, bc.remap_method, bc.remap_limiter, out[slot], work)
+        ghost = u[v, k, :, dst]
+        for j in range(nyt):
+            jj = (j - gy) % ny
+            ghost[j] = out[0, jj] + jump * out[1, jj] if v == 2 else out[0, jj]
+
+
+@njit(cache=True, error_model="numpy")
+def ghost_lines(axis: int, lay, bc) -> int:
+    """Number of independent work items of the ghost fill along ``axis`` (0 if inactive):
+    rows j for z, planes k for y and x, and for shear-periodic x (side, plane) pairs when y
+    is inactive, else (side, variable, plane) triples."""
+    NY = lay.ny + 2 * lay.gy
+    NZ = lay.nz + 2 * lay.gz
+    if axis == 2:
+        return NY if lay.gz > 0 else 0
+    if axis == 1:
+        return NZ if lay.gy > 0 else 0
+    if lay.gx == 0:
+        return 0
+    if bc.x_lo != SHEAR_PERIODIC:
+        return NZ
+    return 2 * NZ if lay.ny == 1 else 8 * NZ
+
+
+@njit(cache=True, error_model="numpy")
+def fill_ghost_lines(u, axis, l0, l1, t, lay, sp, bc) -> None:
+    """Items ``l0 .. l1-1`` (see :func:`ghost_lines`) of the ghost fill along ``axis``.
+
+    All items of an axis are independent; the axes must be done in the order z, y, x.
+    """
+    if axis == 2:
+        if bc.z_lo == HYDROSTATIC:
+            _hydrostatic_ghosts(u, lay, sp, bc, l0, l1)
+        else:
+            _copy_ghosts(u, 2, lay.nz, lay.gz, bc.z_lo, bc.z_hi, l0, l1)
+    elif axis == 1:
+        _copy_ghosts(u, 1, lay.ny, lay.gy, bc.y_lo, bc.y_hi, l0, l1)
+    elif bc.x_lo != SHEAR_PERIODIC:
+        _copy_ghosts(u, 0, lay.nx, lay.gx, bc.x_lo, bc.x_hi, l0, l1)
+    else:
+        ny = lay.ny
+        col = np.empty(ny)
+        out = np.empty((2, ny))
+        work = np.empty(4 * ny + 19)
+        for item in range(l0, l1):
+            _shear_ghosts(u, item, t, lay, sp, bc, col, out, work)
+
+
+@njit(cache=True, error_model="numpy")
+def fill_ghosts(u, t, lay, sp, bc) -> None:
+    """Fill every ghost cell of the state ``u[4, NZ, NY, NX]`` at time ``t`` (see module doc).
+
+    Axes in the order z, y, x, each over the full extent of the others (edges and corners).
+    This is the serial version; the integrator spreads the items of each axis over threads
+    for large (3D) blocks.
+    """
+    for back in range(3):
+        axis = 2 - back
+        fill_ghost_lines(u, axis, 0, ghost_lines(axis, lay, bc), t, lay, sp, bc)
+
+
+@njit(cache=True, error_model="numpy")
+def correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, i0, i1, plane_flux) -> None:
+    """Average the radial-face fluxes of a shear-periodic box with their remapped images, for
+    items ``i0 .. i1-1``: item ``4 k + v`` is variable v of plane k (all independent).
+
+    Parameters
+    ----------
+    u
+        State just updated with the uncorrected fluxes; its first and last radial domain
+        cells are corrected in place.
+    bflux
+        ``(2, 4, nz, ny)`` fluxes through the inner (0) and outer (1) radial faces, as applied.
+    dtdx
+        The ``dt / dx`` the fluxes were applied with.
+    plane_flux
+        ``(nz,)`` output, written by the density items: each plane's ``sum_j F_rho`` through
+        the radial boundary after the correction (outward positive, per unit face area).
+    """
+    nx, ny = lay.nx, lay.ny
+    gx, gy, gz = lay.gx, lay.gy, lay.gz
+    s = shear_offset(t, bc.q_omega_lx, sp.ly) / sp.dy if ny > 1 else 0.0
+    img_in = np.empty((2, ny))  # image of the outer flux on the inner face (and of F_rho)
+    img_out = np.empty((2, ny))
+    work = np.empty(4 * ny + 19)
+    for item in range(i0, i1):
+        k = item // 4
+        v = item % 4
+        for slot in range(2 if v == 2 else 1):
+            w = v if slot == 0 else 0
+            if ny == 1:  # no azimuthal shift
+                img_in[slot, 0] = bflux[1, w, k, 0]
+                img_out[slot, 0] = bflux[0, w, k, 0]
+            else:
+                shift_column(bflux[1, w, k], ny, s, bc.remap_method, bc.remap_limiter, img_in[slot], work)
+                shift_column(bflux[0, w, k], ny, -s, bc.remap_method, bc.remap_limiter, img_out[slot], work)
+        inner = u[v, gz + k, gy:gy + ny, gx]
+        outer = u[v, gz + k, gy:gy + ny, gx + nx - 1]
+        f_in_line = bflux[0, v, k]
+        f_out_line = bflux[1, v, k]
+        plane = 0.0
+        for j in range(ny):
+            g_in = img_in[0, j]
+            g_out = img_out[0, j]
+            if v == 2:  # v_y is larger by q Omega Lx in the inner image
+                g_in += bc.vy_jump * img_in[1, j]
+                g_out -= bc.vy_jump * img_out[1, j]
+            new_in = 0.5 * (f_in_line[j] + g_in)
+            new_out = 0.5 * (f_out_line[j] + g_out)
+            inner[j] += dtdx * (new_in - f_in_line[j])
+            outer[j] -= dtdx * (new_out - f_out_line[j])
+            plane += new_in
+        if v == 0:
+            plane_flux[k] = plane
+
+
+@njit(cache=True, error_model="numpy")
+def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
+    """:func:`correct_radial_items` for every item; returns ``sum_{j,k} F_rho`` after the
+    correction (multiply by ``dy dz dt`` for the mass that crossed the radial boundary)."""
+    plane_flux = np.zeros(lay.nz)
+    correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, 0, 4 * lay.nz, plane_flux)
+    total = 0.0
+    for k in range(lay.nz):
+        total += plane_flux[k]
+    return total

@@ -1,0 +1,332 @@
+"""The grid engine: isothermal Godunov gas on one block, driven by the run loop.
+
+:class:`GridEngine` owns the state (``states[0]`` is the conserved ``(rho, rho v_x, rho v_y,
+rho v_z)`` with ghost zones; further slots are integrator scratch), implements the run-loop
+protocol of :mod:`dustygas.runner`, and exposes the small :class:`GridGeometry` interface the
+particle module uses instead of grid internals.
+
+Memory: ``4 x 8 = 32`` bytes per cell and state slot, so VL2 and RK2 hold 64 bytes per cell
+(plus ghost zones), RK3 96; per-thread pencil buffers are a few kB.
+
+Velocities in the state are the full velocities of the rotating frame unless orbital
+advection is on, in which case they are relative to the background shear
+(``v'_y = v_y + q Omega x``); :meth:`GridEngine.primitive` and the snapshots always return
+the full velocity.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numba
+import numpy as np
+
+from ..errors import SetupError, SimulationError, UserError
+from .boundaries import fill_ghosts, make_boundaries
+from .diagnostics import domain_sums, max_signal_rate
+from .integrator import INTEGRATORS, advance_gas, integrator_tables
+from .mesh import Mesh
+from .reconstruct import LIMITERS, RECONSTRUCTIONS
+from .riemann import RIEMANN_SOLVERS
+from .shearing_box import shear_offset, shear_velocity_jump, source_terms
+
+__all__ = ["GridEngine", "GridGeometry"]
+
+#: callback of :meth:`GridEngine.advance_with_sources`: (stage, state read, stage time, stage dt) -> S_ext or None
+SourceHook = Callable[[int, np.ndarray, float, float], "np.ndarray | None"]
+
+
+@dataclass(frozen=True)
+class GridGeometry:
+    """What a particle module needs to know about the mesh and the frame.
+
+    Attributes
+    ----------
+    shape
+        Domain cells ``(nx, ny, nz)``; 1 marks an inactive axis.
+    nghost
+        Ghost cells per side ``(gx, gy, gz)``; domain cell ``(i, j, k)`` is array element
+        ``[k + gz, j + gy, i + gx]`` of each variable.
+    lower, dx, box
+        Lower corner of the domain, cell sizes and box lengths (inactive axes: 0, 1, 1).
+    q, omega
+        Shear parameter and frame rotation.
+    shear_periodic
+        Whether the radial boundaries slide (particles crossing x change y by the offset).
+    velocity_relative_to_shear
+        True under orbital advection: stored gas velocities are ``v + q Omega x y^``.
+    """
+
+    shape: tuple[int, int, int]
+    nghost: tuple[int, int, int]
+    lower: tuple[float, float, float]
+    dx: tuple[float, float, float]
+    box: tuple[float, float, float]
+    q: float
+    omega: float
+    shear_periodic: bool
+    velocity_relative_to_shear: bool
+
+    def shear_offset(self, t: float) -> float:
+        """Azimuthal offset ``q Omega Lx t mod Ly`` of the outer radial image at time ``t``."""
+        if not self.shear_periodic or self.shape[1] == 1:
+            return 0.0
+        return float(shear_offset(t, self.q * self.omega * self.box[0], self.box[1]))
+
+    @property
+    def shear_velocity_jump(self) -> float:
+        """``q Omega Lx`` (0 without shear-periodic boundaries): v_y of the inner image minus the outer."""
+        return self.q * self.omega * self.box[0] if self.shear_periodic else 0.0
+
+
+class GridEngine:
+    """Isothermal gas on a uniform mesh, optionally in a shearing box.
+
+    Parameters
+    ----------
+    mesh
+        The block of cells.
+    cs
+        Isothermal sound speed.
+    integrator, reconstruction, limiter, riemann
+        Names from :data:`~dustygas.grid.integrator.INTEGRATORS`,
+        :data:`~dustygas.grid.reconstruct.RECONSTRUCTIONS`,
+        :data:`~dustygas.grid.reconstruct.LIMITERS`,
+        :data:`~dustygas.grid.riemann.RIEMANN_SOLVERS`.
+    cfl
+        Courant number (see :func:`~dustygas.grid.diagnostics.max_signal_rate`).
+    boundaries
+        Kind name per axis (:data:`~dustygas.grid.boundaries.BOUNDARY_KINDS`).
+    omega, q, orbital_advection, vertical_gravity, eta_vK
+        Shearing box (:func:`~dustygas.grid.shearing_box.source_terms`); ``omega = 0``: none.
+
+    Examples
+    --------
+    >>> eng = GridEngine(Mesh((32, 1, 1), (1.0, 1.0, 1.0)))
+    >>> eng.set_primitive(rho=1.0)
+    >>> eng.advance(eng.timestep()); eng.cycle, round(eng.history()["mass"], 12)
+    (1, 1.0)
+    """
+
+    work_label = "zone-cycles"
+
+    def __init__(
+        self,
+        mesh: Mesh,
+        cs: float = 1.0,
+        integrator: str = "vl2",
+        reconstruction: str = "plm",
+        limiter: str = "mc",
+        riemann: str = "hlle",
+        cfl: float = 0.4,
+        boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic"),
+        omega: float = 0.0,
+        q: float = 1.5,
+        orbital_advection: bool = False,
+        vertical_gravity: bool = False,
+        eta_vK: float = 0.0,
+    ):
+        for name, value, table in (("integrator", integrator, INTEGRATORS),
+                                   ("reconstruction", reconstruction, RECONSTRUCTIONS),
+                                   ("limiter", limiter, LIMITERS), ("riemann", riemann, RIEMANN_SOLVERS)):
+            if value not in table:
+                raise SetupError(f"{name} '{value}' unknown: choose one of {', '.join(table)}")
+        if not cs > 0:
+            raise SetupError(f"sound speed cs={cs}: must be positive")
+        limit = 1.0 / mesh.ndim  # unsplit: the Courant numbers of the axes add up (a diagonal wave)
+        if not 0 < cfl <= limit:
+            raise SetupError(f"cfl={cfl}: {integrator} in {mesh.ndim}D is stable for 0 < cfl <= {limit:g}")
+        for n, g, axis in zip(mesh.shape, mesh.ghosts, "xyz"):
+            if 1 < n < g:
+                raise SetupError(f"n{axis}={n}: an active axis needs at least {g} cells")
+        shear = boundaries[0] == "shear-periodic" and mesh.active[0]
+        if orbital_advection and omega == 0.0:
+            raise SetupError("orbital advection needs a rotating frame (omega != 0)")
+        self.mesh = mesh
+        self.cs = float(cs)
+        self.cfl = float(cfl)
+        self.scheme_names = dict(integrator=integrator, reconstruction=reconstruction, limiter=limiter, riemann=riemann)
+        self.omega, self.q = float(omega), float(q)
+        # velocities relative to the shear; the remap itself only acts if y is active
+        self.orbital_advection = bool(orbital_advection)
+        self.shear_periodic = shear
+        recon = RECONSTRUCTIONS[reconstruction]
+        lim = LIMITERS[limiter]
+        self._scheme = (recon, lim, RIEMANN_SOLVERS[riemann], self.cs)
+        self._ints, self._reals = integrator_tables(integrator)
+        self._layout = mesh.layout
+        self._spacing = mesh.spacing
+        self._sources = source_terms(omega, q, self.orbital_advection, vertical_gravity, eta_vK)
+        lx = mesh.size[0]
+        self._bc = make_boundaries(
+            tuple(boundaries), mesh.active, q * omega * lx,
+            shear_velocity_jump(q, omega, lx, self.orbital_advection), recon, lim,
+            scale_height=cs / omega if vertical_gravity and omega > 0 else 0.0,
+        )
+        self._oa_rate = q * omega if self.orbital_advection and mesh.active[1] else 0.0
+        # v_y(full) = v_y(stored) - to_full x ;  v_y(relative to shear) = v_y(stored) + to_relative x
+        self._to_full = q * omega if self.orbital_advection else 0.0
+        self._to_relative = 0.0 if self.orbital_advection else q * omega
+        self._xc = mesh.centers(0, ghosts=True)
+        self._zc = mesh.centers(2, ghosts=True)
+        nz, ny, nx = mesh.array_shape
+        self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
+        self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
+        self._no_ext = np.zeros((3, 1, 1, 1))
+        #: time integrals [mass through the radial boundary, y-momentum from the source terms]
+        self.budget = np.zeros(2)
+        self.t = 0.0
+        self.cycle = 0
+        self.work_units = mesh.ncells
+        self._update_rate()  # an unset (zero) density is flagged until set_primitive
+
+    # ------------------------------------------------------------------ state access
+    @property
+    def state(self) -> np.ndarray:
+        """Conserved variables ``(4, NZ, NY, NX)`` with ghost zones (slot 0 of :attr:`states`)."""
+        return self.states[0]
+
+    @property
+    def half_state(self) -> np.ndarray:
+        """Slot 1: after a VL2 step, the half-step state ``U^{n+1/2}`` read by the corrector."""
+        return self.states[1]
+
+    @property
+    def geometry(self) -> GridGeometry:
+        m = self.mesh
+        return GridGeometry(m.shape, m.ghosts, m.lower, m.dx, m.size, self.q, self.omega,
+                            self.shear_periodic, self.orbital_advection)
+
+    def set_primitive(self, rho: Any = 1.0, vx: Any = 0.0, vy: Any = 0.0, vz: Any = 0.0) -> None:
+        """Set the domain from density and the *full* velocity (broadcast to ``(nz, ny, nx)``)."""
+        shape = tuple(reversed(self.mesh.shape))
+        rho = np.broadcast_to(np.asarray(rho, dtype=np.float64), shape)
+        if not np.all(rho > 0) or not np.all(np.isfinite(rho)):
+            raise SetupError("initial density must be positive and finite everywhere")
+        x = self.mesh.centers(0)[None, None, :]
+        vy = np.broadcast_to(np.asarray(vy, dtype=np.float64), shape) + self._to_full * x
+        inner = (slice(None),) + self.mesh.interior()
+        u = self.states[0][inner]
+        for var, vel in ((1, vx), (2, vy), (3, vz)):
+            u[var] = rho * np.broadcast_to(np.asarray(vel, dtype=np.float64), shape)
+        u[0] = rho
+        self._update_rate()
+
+    def primitive(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Domain density and full velocities, each ``(nz, ny, nx)``."""
+        u = self.states[0][(slice(None),) + self.mesh.interior()]
+        rho = u[0].copy()
+        x = self.mesh.centers(0)[None, None, :]
+        return rho, u[1] / rho, u[2] / rho - self._to_full * x, u[3] / rho
+
+    def fill_ghosts(self, u: np.ndarray | None = None, t: float | None = None) -> np.ndarray:
+        """Fill the ghost zones (edges and corners too) of ``u`` (default: the state) at ``t``."""
+        u = self.states[0] if u is None else u
+        fill_ghosts(u, self.t if t is None else t, self._layout, self._spacing, self._bc)
+        return u
+
+    # ------------------------------------------------------------------ run-loop protocol
+    def _update_rate(self) -> None:
+        rate, bad = max_signal_rate(self.states[0], self._layout, self._spacing, self.cs)
+        self._check(rate, bad)
+
+    def _check(self, rate: float, bad: int) -> None:
+        self._rate = rate
+        self._bad = bad
+
+    def timestep(self) -> float:
+        """``cfl / max_d((|v_d| + c_s)/dx_d)`` of the current state (thesis eqs. 2.12-2.13)."""
+        if self._bad >= 0:
+            nx, ny, _ = self.mesh.shape
+            i, j, k = self._bad % nx, (self._bad // nx) % ny, self._bad // (nx * ny)
+            rho, vx, vy, vz = self.primitive()
+            raise SimulationError(
+                f"invalid gas state in cell (i={i}, j={j}, k={k}) at time={self.t:.6g} cycle={self.cycle}: "
+                f"rho={rho[k, j, i]:.6g}",
+                state={"rho": rho, "vx": vx, "vy": vy, "vz": vz},
+            )
+        return self.cfl / self._rate
+
+    def advance(self, dt: float) -> None:
+        """One step of the configured integrator (fused: one call into compiled code)."""
+        nstage = self._ints.shape[0]
+        rate, bad = advance_gas(
+            self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
+            self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate, self._no_ext, False,
+            self._bflux, self.budget, numba.get_num_threads(),
+        )
+        self._check(rate, bad)
+        self.t += dt
+        self.cycle += 1
+
+    def advance_with_sources(self, dt: float, hook: SourceHook) -> None:
+        """One step calling ``hook(stage, U_read, t_stage, dt_stage)`` before each stage.
+
+        ``U_read`` is the state the stage reads, with ghost zones filled at ``t_stage``; the
+        hook returns the external momentum source ``(3, nz, ny, nx)`` of that stage (momentum
+        per unit volume and time) or None. With a hook returning None this is bit-identical
+        to :meth:`advance`. See :mod:`dustygas.grid.integrator` for the VL2 coupling recipe.
+        """
+        ints, reals = self._ints, self._reals
+        nstage = ints.shape[0]
+        want = (3,) + tuple(reversed(self.mesh.shape))
+        for s in range(nstage):
+            src = self.states[ints[s, 0]]
+            t_stage = self.t + reals[s, 3] * dt
+            fill_ghosts(src, t_stage, self._layout, self._spacing, self._bc)
+            ext = hook(s, src, t_stage, reals[s, 2] * dt)
+            use = ext is not None
+            if use:
+                ext = np.ascontiguousarray(ext, dtype=np.float64)
+                if ext.shape != want:
+                    raise ValueError(f"momentum source has shape {ext.shape}, expected {want}")
+            rate, bad = advance_gas(
+                self.states, ints, reals, s, s + 1, s == nstage - 1, dt, self.t, self._layout, self._spacing,
+                self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
+                ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
+            )
+        self._check(rate, bad)
+        self.t += dt
+        self.cycle += 1
+
+    def history(self) -> dict[str, float]:
+        """Totals over the box (per unit length of inactive axes)."""
+        s = domain_sums(self.states[0], self._layout, self._xc, self._to_full, self._to_relative)
+        dv = self.mesh.cell_volume
+        out = {
+            "mass": s[0] * dv,
+            "momentum_x": s[1] * dv,
+            "momentum_y": s[2] * dv,
+            "momentum_z": s[3] * dv,
+            "kinetic_energy": s[4] * dv,
+            "rho_max": s[5],
+            "rho_min": s[6],
+        }
+        if self.shear_periodic or self._sources.active:
+            out["radial_boundary_mass"] = float(self.budget[0])
+            out["momentum_y_source"] = float(self.budget[1])
+        return {k: float(v) for k, v in out.items()}
+
+    def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+        rho, vx, vy, vz = self.primitive()
+        m = self.mesh
+        arrays = {"rho": rho, "vx": vx, "vy": vy, "vz": vz,
+                  "x": m.centers(0), "y": m.centers(1), "z": m.centers(2)}
+        attrs = {"cs": self.cs, "omega": self.omega, "q": self.q, "lx": m.size[0], "ly": m.size[1], "lz": m.size[2],
+                 "shear_offset": self.geometry.shear_offset(self.t),
+                 "orbital_advection": self.orbital_advection, **self.scheme_names}
+        return arrays, attrs
+
+    def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+        inner = (slice(None),) + self.mesh.interior()
+        return {"conserved": self.states[0][inner].copy(), "budget": self.budget.copy()}, {}
+
+    def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
+        inner = (slice(None),) + self.mesh.interior()
+        u = np.asarray(arrays["conserved"])
+        if u.shape != self.states[0][inner].shape:
+            raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {self.states[0][inner].shape}")
+        self.states[0][inner] = u
+        self.budget[:] = arrays["budget"]
+        self._update_rate()

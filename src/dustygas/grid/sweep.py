@@ -1,0 +1,254 @@
+"""The fused per-pencil kernel: reconstruct, solve Riemann problems, update, in one pass.
+
+A *pencil* is a line of cells along one axis, ghosts included. For each pencil the kernel
+gathers the primitive variables ``(rho, v_n, v_t1, v_t2)`` of the stage's input state into a
+small buffer, reconstructs face states, computes the fluxes of all faces, and adds the flux
+differences of its domain cells to the output state. Nothing the size of the mesh is
+allocated and no face array is stored: the buffers live in L1 cache, one set per thread.
+Pencils are independent, so the integrator distributes them over threads (``prange`` over
+contiguous ranges of pencils) without races, and the result does not depend on the number
+of threads. (The ``prange`` loops live in the top-level driver
+:func:`~dustygas.grid.integrator.advance_gas` only: numba cannot cache a parallel function
+that is called from another compiled function.)
+
+One *stage* of an integrator updates
+
+.. math::
+
+    U_{out} = a\\,U_{base} + b\\,U_{in} + \\Delta t_{s}\\left[-\\sum_d
+    \\frac{F_{d,+} - F_{d,-}}{\\Delta x_d}(U_{in}) + S(U_{in}) + S_{ext}\\right]
+
+with one call of :func:`sweep_pencils` per active axis (over all its pencils). The first
+call (``first=True``) writes ``a U_base + b U_in``, the source terms ``S`` of the shearing
+box (evaluated from the same primitive buffer, thesis eq. 4.2b) and the optional external
+momentum source ``S_ext`` (back-reaction of particles, given per unit volume and time); the
+later calls add their flux differences. ``U_out`` may be the same array as ``U_base``
+(in-place corrector); it must not be ``U_in``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .diagnostics import cell_rate
+from .reconstruct import reconstruct_faces
+from .riemann import riemann_fluxes
+from .shearing_box import momentum_source
+
+__all__ = ["sweep_pencils", "pencil_count"]
+
+
+@njit(cache=True, error_model="numpy")
+def pencil_count(axis: int, lay) -> int:
+    """Number of pencils along ``axis``: the domain cells of the other two axes."""
+    if axis == 0:
+        return lay.ny * lay.nz
+    if axis == 1:
+        return lay.nx * lay.nz
+    return lay.nx * lay.ny
+
+
+@njit(cache=True, error_model="numpy")
+def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc, zc, ext, use_ext, bflux,
+                  store_bflux, y_source, rates, bads, want_rate, skip_radial_edges, p0, p1):
+    """Add the flux differences along ``axis`` of ``src`` to ``dst`` for pencils ``p0 .. p1-1``.
+
+    Parameters
+    ----------
+    src, dst, base
+        States ``(4, NZ, NY, NX)``: conserved density and momenta, ghost zones included
+        (``src`` ghosts must be filled).
+    axis
+        0, 1, 2 for x, y, z.
+    first
+        Initialise ``dst = a base + b src + dt (S(src) + ext)`` before adding the fluxes.
+    dt
+        The stage's time-step factor ``Delta t_s``.
+    lay, sp
+        :class:`~dustygas.grid.mesh.Layout`, :class:`~dustygas.grid.mesh.Spacing`.
+    scheme
+        ``(reconstruction, limiter, riemann, cs)`` codes and the sound speed.
+    st
+        :class:`~dustygas.grid.shearing_box.SourceTerms`.
+    xc, zc
+        Cell-centre x and z coordinates, ghosts included.
+    ext, use_ext
+        External momentum source ``(3, nz, ny, nx)`` (domain cells) and whether to add it.
+    bflux, store_bflux
+        ``(2, 4, nz, ny)``: if ``store_bflux`` (x sweeps only), the fluxes through the inner
+        and outer x faces are stored for the shear-periodic flux correction.
+    y_source
+        ``(npencil,)``: in the first sweep, each pencil's sum of the y-momentum source of the
+        shearing box (without ``ext``), for the momentum budget.
+    rates, bads, want_rate, skip_radial_edges
+        ``(npencil,)``: if ``want_rate`` (the last sweep of a step), each pencil's largest
+        :func:`~dustygas.grid.diagnostics.cell_rate` of the values just written and its first
+        invalid cell (flat domain index, -1 if none), leaving out the first and last radial
+        cells if ``skip_radial_edges`` (a shear-periodic box corrects them afterwards).
+    p0, p1
+        Range of pencils; pencil ``p`` has transverse domain indices ``(p % na, p // na)``
+        (``(j, k)`` for x, ``(i, k)`` for y, ``(i, j)`` for z).
+    """
+    method, limiter, solver, cs = scheme
+    nx, ny, nz, gx, gy, gz = lay
+    NX = nx + 2 * gx
+    NY = ny + 2 * gy
+    NZ = nz + 2 * gz
+    if axis == 0:
+        n, g, stride, d = nx, gx, 1, sp.dx
+        na, ga, gb, sa, sb = ny, gy, gz, NX, NX * NY
+    elif axis == 1:
+        n, g, stride, d = ny, gy, NX, sp.dy
+        na, ga, gb, sa, sb = nx, gx, gz, 1, NX * NY
+    else:
+        n, g, stride, d = nz, gz, NX * NY, sp.dz
+        na, ga, gb, sa, sb = nx, gx, gy, 1, NX
+    dtdx = dt / d
+    # conserved components carried by pencil variables 1, 2, 3 (normal, two transverse) and
+    # the pencil variable (flux row) holding each of x, y, z
+    c1 = 1 + axis
+    c2 = 1 + (axis + 1) % 3
+    c3 = 1 + (axis + 2) % 3
+    row_x = 1 + (3 - axis) % 3
+    row_y = 1 + (4 - axis) % 3
+    row_z = 1 + (5 - axis) % 3
+    S = src.reshape(4, NZ * NY * NX)
+    D = dst.reshape(4, NZ * NY * NX)
+    B = base.reshape(4, NZ * NY * NX)
+    N = n + 2 * g
+    lo, hi = g, g + n
+    w = np.empty((4, N))
+    wl = np.empty((4, N + 1))
+    wr = np.empty((4, N + 1))
+    flux = np.empty((4, N + 1))
+    scratch = np.empty((2, N + 1))
+    xs = np.empty(n)
+    zs = np.empty(n)
+    ext_x = np.zeros(n)
+    ext_y = np.zeros(n)
+    ext_z = np.zeros(n)
+    w0, w1, w2, w3 = w[0], w[1], w[2], w[3]
+    vx = w[row_x, lo:]
+    vy = w[row_y, lo:]
+    rho_c = w[0, lo:]
+    f_rho = flux[0, lo:]
+    f_x = flux[row_x, lo:]
+    f_y = flux[row_y, lo:]
+    f_z = flux[row_z, lo:]
+    for p in range(p0, p1):
+        ia = p % na
+        ib = p // na
+        off = (ia + ga) * sa + (ib + gb) * sb
+        end = off + N * stride
+        # gather primitives along the pencil (views: all indices start at 0)
+        s_rho = S[0, off:end:stride]
+        s_n = S[c1, off:end:stride]
+        s_t1 = S[c2, off:end:stride]
+        s_t2 = S[c3, off:end:stride]
+        for s in range(N):
+            rho = s_rho[s]
+            inv = 1.0 / rho
+            w0[s] = rho
+            w1[s] = s_n[s] * inv
+            w2[s] = s_t1[s] * inv
+            w3[s] = s_t2[s] * inv
+        reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch)
+        riemann_fluxes(wl, wr, lo, hi, cs, solver, flux)
+        if store_bflux:
+            for v in range(4):
+                bflux[0, v, ib, ia] = flux[v, lo]
+                bflux[1, v, ib, ia] = flux[v, hi]
+        # domain cells of the pencil: flux differences of faces i and i + 1
+        first_cell = off + lo * stride
+        last = first_cell + n * stride
+        d_rho = D[0, first_cell:last:stride]
+        d_x = D[1, first_cell:last:stride]
+        d_y = D[2, first_cell:last:stride]
+        d_z = D[3, first_cell:last:stride]
+        if not first:
+            for i in range(n):
+                d_rho[i] -= dtdx * (f_rho[i + 1] - f_rho[i])
+                d_x[i] -= dtdx * (f_x[i + 1] - f_x[i])
+                d_y[i] -= dtdx * (f_y[i + 1] - f_y[i])
+                d_z[i] -= dtdx * (f_z[i + 1] - f_z[i])
+            if want_rate:
+                _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p)
+            continue
+        # first sweep: base, input and source terms too
+        if axis == 0:
+            i0, j0, k0 = 0, ia, ib
+            xs[:] = xc[lo:hi]
+            zs[:] = zc[ib + gz]
+        elif axis == 1:
+            i0, j0, k0 = ia, 0, ib
+            xs[:] = xc[ia + gx]
+            zs[:] = zc[ib + gz]
+        else:
+            i0, j0, k0 = ia, ib, 0
+            xs[:] = xc[ia + gx]
+            zs[:] = zc[lo:hi]
+        if use_ext:
+            if axis == 0:
+                ext_x[:] = ext[0, k0, j0, :]
+                ext_y[:] = ext[1, k0, j0, :]
+                ext_z[:] = ext[2, k0, j0, :]
+            elif axis == 1:
+                ext_x[:] = ext[0, k0, :, i0]
+                ext_y[:] = ext[1, k0, :, i0]
+                ext_z[:] = ext[2, k0, :, i0]
+            else:
+                ext_x[:] = ext[0, :, j0, i0]
+                ext_y[:] = ext[1, :, j0, i0]
+                ext_z[:] = ext[2, :, j0, i0]
+        b_rho = B[0, first_cell:last:stride]
+        b_x = B[1, first_cell:last:stride]
+        b_y = B[2, first_cell:last:stride]
+        b_z = B[3, first_cell:last:stride]
+        u_rho = S[0, first_cell:last:stride]
+        u_x = S[1, first_cell:last:stride]
+        u_y = S[2, first_cell:last:stride]
+        u_z = S[3, first_cell:last:stride]
+        ysum = 0.0
+        for i in range(n):
+            sx, sy, sz = momentum_source(rho_c[i], vx[i], vy[i], xs[i], zs[i], st)
+            ysum += sy
+            sx += ext_x[i]
+            sy += ext_y[i]
+            sz += ext_z[i]
+            d_rho[i] = a * b_rho[i] + b * u_rho[i] - dtdx * (f_rho[i + 1] - f_rho[i])
+            d_x[i] = a * b_x[i] + b * u_x[i] + dt * sx - dtdx * (f_x[i + 1] - f_x[i])
+            d_y[i] = a * b_y[i] + b * u_y[i] + dt * sy - dtdx * (f_y[i + 1] - f_y[i])
+            d_z[i] = a * b_z[i] + b * u_z[i] + dt * sz - dtdx * (f_z[i + 1] - f_z[i])
+        y_source[p] = ysum
+        if want_rate:
+            _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p)
+
+
+@njit(cache=True, error_model="numpy")
+def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p):
+    """Largest cell rate of the values just written along pencil ``p`` (see sweep_pencils)."""
+    nx, ny = lay.nx, lay.ny
+    n = d_rho.shape[0]
+    lo, hi = 0, n
+    if skip_radial_edges:
+        if axis == 0:
+            lo, hi = 1, n - 1
+        elif ia == 0 or ia == nx - 1:  # a radial boundary column (ia is the x index)
+            lo, hi = 0, 0
+    best = 0.0
+    bad = -1
+    for i in range(lo, hi):
+        rate = cell_rate(d_rho[i], d_x[i], d_y[i], d_z[i], lay, sp, cs)
+        if rate < 0.0:
+            if bad < 0:
+                if axis == 0:
+                    bad = (ib * ny + ia) * nx + i
+                elif axis == 1:
+                    bad = (ib * ny + i) * nx + ia
+                else:
+                    bad = (i * ny + ib) * nx + ia
+        elif rate > best:
+            best = rate
+    rates[p] = best
+    bads[p] = bad
