@@ -181,7 +181,6 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
     """For each cell: gather the candidates of the 3^d surrounding cells once (periodic shifts
     applied), then test every query of the cell against them in two vectorisable passes."""
     nx, ny, nz = ncell[0], ncell[1], ncell[2]
-    cap = index.shape[1]
     # minimum image needed along periodic dimensions held in a single cell
     mi_x = periodic[0] and nx == 1
     mi_y = periodic[1] and ny == 1
@@ -265,20 +264,31 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
                 if mi_z:
                     dz -= length[2] * np.rint(dz * inv_lz)
                 d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            n = 0
-            hit = -1
-            for j in range(m):
-                if d2[j] < 0.0:
-                    b = pid[j]
-                    if exclude_self and b == a:
-                        continue
-                    if d2[j] == -r2 * max(ha2, ph2[j]):
-                        hit = b  # zero separation
-                    if n < cap:
-                        index[a, n] = b
-                    n += 1
-            count[a] = n
-            overlap[a] = hit
+            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
+
+
+@njit(inline="always")
+def _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap):
+    """Write the candidates with d2 < 0 (inside max(h_a, h_b) * radius) into row a of the list.
+
+    ``count[a]`` is the true number of neighbours even when it exceeds the row capacity (the caller
+    then grows the list and searches again); ``overlap[a]`` records a neighbour at zero separation.
+    """
+    cap = index.shape[1]
+    n = 0
+    hit = -1
+    for j in range(m):
+        if d2[j] < 0.0:
+            b = pid[j]
+            if exclude_self and b == a:
+                continue
+            if d2[j] == -r2 * max(ha2, ph2[j]):
+                hit = b  # zero separation
+            if n < cap:
+                index[a, n] = b
+            n += 1
+    count[a] = n
+    overlap[a] = hit
 
 
 @njit(parallel=True, cache=True)
