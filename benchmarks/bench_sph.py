@@ -21,6 +21,7 @@ Run alone: ``flock /tmp/dustygas-bench.lock python benchmarks/bench_sph.py [n ..
 
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 import time
@@ -90,4 +91,6 @@ def main(sizes: list[int]) -> None:
 
 
 if __name__ == "__main__":
-    main([int(a) for a in sys.argv[1:]] or [32, 64])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("sizes", nargs="*", type=int, default=[32, 64], help="lattice sizes n (n^3 particles)")
+    main(parser.parse_args().sizes)

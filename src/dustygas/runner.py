@@ -17,6 +17,9 @@ The engine protocol (:class:`Engine`) is deliberately small::
     engine.restore(arrays, attrs)   inverse of checkpoint() on a freshly built engine
     engine.work_units, engine.work_label     e.g. (64*64, "zone-cycles")
 
+An engine may also have ``messages() -> list[str]``: log lines (warnings, events) produced since
+the last call, which the loop writes to ``log.txt`` and stderr after every step.
+
 Restarting rebuilds the engine from the run's ``config.toml`` with the problem's ``build`` and
 then calls ``restore`` with the newest checkpoint, so a run killed at any moment continues to
 outputs identical to an uninterrupted run.
@@ -230,6 +233,13 @@ class RunLoop:
         self._check_finite()
         self._write_snapshot()
         self._record_history()
+        self._log_messages()
+
+    def _log_messages(self) -> None:
+        messages = getattr(self.engine, "messages", None)
+        for line in messages() if messages is not None else ():
+            self.rundir.log(line)
+            print(f"dustygas: {line}", file=sys.stderr, flush=True)
 
     def _check_finite(self) -> None:
         values = self.engine.history()
@@ -271,6 +281,7 @@ class RunLoop:
                     now = time.perf_counter()
                     step_wall = max(step_wall * 0.9, now - t_step)
                     work += eng.work_units
+                    self._log_messages()
                     if run.dt_history <= 0 or eng.t >= s.next_history:
                         self._check_finite()
                         self._record_history()

@@ -89,6 +89,7 @@ __all__ = [
     "dust_to_gas_ratio",
     "ratio_to_fraction",
     "fraction_to_ratio",
+    "mixture_stopping_time",
 ]
 
 #: Re below which the Stokes drag is linear (C_D = 24/Re) and above which C_D = 24 Re^-0.6.
@@ -289,3 +290,19 @@ def fraction_to_ratio(eps: ArrayLike) -> np.ndarray:
     """:math:`\\mu = \\epsilon/(1-\\epsilon)` (eqs. 2.7-2.8)."""
     eps = _f(eps)
     return eps / (1.0 - eps)
+
+
+def mixture_stopping_time(K: ArrayLike, rho_g: ArrayLike, rho_d: ArrayLike) -> np.ndarray:
+    """Stopping time of the relative velocity for a drag coefficient ``K``:
+    :math:`t_s = \\rho_g\\rho_d/(K(\\rho_g+\\rho_d))`.
+
+    Eqs. 2.5a-b with a constant :math:`K`: :math:`v_d - v_g` decays as :math:`e^{-t/t_s}` (Laibe &
+    Price 2011, the dustybox; ``numbers.md`` §3); the one-fluid equations (Laibe & Price 2014)
+    use this :math:`t_s`. For the Epstein :math:`K` it equals :func:`epstein_stopping_time` with
+    ``rho_d``.
+
+    >>> float(mixture_stopping_time(0.35, 1.0, 1.0))  # Phantom's dustybox: 1/(2K)
+    1.4285714285714286
+    """
+    rho_g, rho_d = _f(rho_g), _f(rho_d)
+    return rho_g * rho_d / (_f(K) * (rho_g + rho_d))

@@ -23,12 +23,10 @@ problem only needs a new file here.
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
 from typing import Any, ClassVar, Mapping
 
 from ..config import Config, Param, Schema, build_config, with_defaults
-from ..errors import UserError
+from .._registry import import_submodules, unknown_name
 
 __all__ = ["Problem", "register", "preset", "get_problem", "problem_names", "all_problems"]
 
@@ -86,9 +84,7 @@ def _discover() -> None:
     if _DISCOVERED:
         return
     _DISCOVERED = True
-    for mod in pkgutil.iter_modules(__path__):
-        if not mod.name.startswith("_"):
-            importlib.import_module(f"{__name__}.{mod.name}")
+    import_submodules(__name__, __path__)
 
 
 def problem_names() -> list[str]:
@@ -108,8 +104,4 @@ def get_problem(name: str) -> Problem:
     try:
         return _REGISTRY[name]
     except KeyError:
-        import difflib
-
-        close = difflib.get_close_matches(name, _REGISTRY, n=1, cutoff=0.5)
-        hint = f"; did you mean '{close[0]}'?" if close else ""
-        raise UserError(f"unknown problem '{name}'{hint} (see: dustygas problems)") from None
+        raise unknown_name("problem", name, _REGISTRY, "dustygas problems") from None

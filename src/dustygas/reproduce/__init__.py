@@ -13,13 +13,11 @@ Every module of this package is imported on first use, so a new figure only need
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..errors import UserError
+from .._registry import import_submodules, unknown_name
 
 __all__ = ["figure", "figure_names", "get_figure", "FigureSpec"]
 
@@ -53,9 +51,7 @@ def _discover() -> None:
     if _DISCOVERED:
         return
     _DISCOVERED = True
-    for mod in pkgutil.iter_modules(__path__):
-        if not mod.name.startswith("_"):
-            importlib.import_module(f"{__name__}.{mod.name}")
+    import_submodules(__name__, __path__)
 
 
 def _key(name: str) -> tuple:
@@ -71,9 +67,5 @@ def figure_names() -> list[str]:
 def get_figure(name: str) -> FigureSpec:
     _discover()
     if name not in _FIGURES:
-        import difflib
-
-        close = difflib.get_close_matches(name, _FIGURES, n=1, cutoff=0.5)
-        hint = f"; did you mean '{close[0]}'?" if close else ""
-        raise UserError(f"unknown figure '{name}'{hint} (see: dustygas reproduce --list)")
+        raise unknown_name("figure", name, _FIGURES, "dustygas reproduce --list")
     return _FIGURES[name]

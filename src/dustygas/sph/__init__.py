@@ -13,11 +13,14 @@ eos, viscosity, forces, external
     Equations of state; artificial viscosity, conductivity and the Morris & Monaghan and
     Cullen & Dehnen switches; the GASOLINE2 and
     Price (2012) pressure forces with the energy equation (eqs. 3.2-3.3); external forces.
-timestep, integrator
-    Time-step criteria (eqs. 2.13-2.15) and the kick-drift-kick leapfrog.
-particles, engine, schema
-    The struct-of-arrays particle store, :class:`SPHEngine` for the run loop, and the ``[sph]``
-    configuration section shared by the SPH problems.
+integrator
+    The kick-drift-kick leapfrog (time-step criteria, eqs. 2.13-2.15: :mod:`dustygas.physics.timestep`).
+particles, engine, modules, schema
+    The struct-of-arrays particle store, :class:`SPHEngine` for the run loop, the hooks through
+    which extra physics plugs into it, and the ``[sph]`` configuration section shared by the SPH
+    problems.
+dust
+    One-fluid and two-fluid dust, grain sizes (thesis §3.2-3.3).
 lattice, render, plot
     Initial particle arrangements, SPH interpolation onto grids, figures.
 """

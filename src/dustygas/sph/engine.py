@@ -41,6 +41,7 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
+from ..physics.timestep import acceleration_timestep, courant_timestep, min_timestep
 from .density import H_NEEDS_NEIGHBOURS, H_NOT_CONVERGED, gasoline2_correction, solve_smoothing_lengths
 from .eos import EquationOfState, pressure_sound_speed
 from .external import ExternalForces
@@ -48,8 +49,8 @@ from .forces import FORCE_FORMS, GASOLINE2, hydro_forces, pack_particles, packed
 from .integrator import drift_and_predict, kick
 from .kernels import KERNEL_NAMES, get_kernel
 from .neighbours import Box, NeighbourFinder
+from .modules import SPHModule
 from .particles import GAS, ParticleSet, count_invalid
-from .timestep import combined_timestep, courant_force_timestep
 from .viscosity import cullen_dehnen_alpha, morris_monaghan_rate
 
 __all__ = ["SPHOptions", "SPHEngine"]
@@ -136,12 +137,17 @@ class SPHOptions:
 
 
 class SPHEngine:
-    """Gas (and test) particles under SPH forces and external forces (see module docstring)."""
+    """Gas (and test) particles under SPH forces and external forces (see module docstring).
+
+    ``modules`` are :class:`~dustygas.sph.modules.SPHModule` objects adding physics (dust,
+    grain growth) at fixed points of the step; they are called in the order given.
+    """
 
     work_label = "particle-updates"
 
     def __init__(self, particles: ParticleSet, box: Box, eos: EquationOfState,
-                 options: SPHOptions = SPHOptions(), external: ExternalForces = ExternalForces()):
+                 options: SPHOptions = SPHOptions(), external: ExternalForces = ExternalForces(),
+                 modules: tuple[SPHModule, ...] = ()):
         self.particles = particles
         self.box = box
         self.eos = eos
@@ -160,12 +166,15 @@ class SPHEngine:
         self.h_iterations = 0
         self.extra_searches = 0  # neighbour searches repeated because some h outgrew its table
         #: further time-step limits, each ``f(engine) -> dt`` (e.g. the drag limit of thesis eq. 2.15,
-        #: :func:`~dustygas.sph.timestep.drag_timestep`, added by the dust modules)
+        #: :func:`dustygas.physics.timestep.drag_timestep`, added by the dust modules)
         self.timestep_limits: list = []
+        self.modules: tuple[SPHModule, ...] = tuple(modules)
         self._check_setup()
         box.wrap(particles.pos)
         self._allocate(len(particles))
         self._valid = False
+        for module in self.modules:
+            module.attach(self)
 
     # ------------------------------------------------------------------ set-up
     def _check_setup(self) -> None:
@@ -272,6 +281,8 @@ class SPHEngine:
             nl = self._smoothing_lengths(pos_g, mass_g, h_g, out["rho"], out["omega"])
             pressure_sound_speed(self.eos.kind, self.eos.cs0, self.eos.gamma, self.eos.r0, self.eos.q,
                                  out["rho"], u_g, pos_g, out["P"], out["cs"])
+            for module in self.modules:
+                module.adjust_pressure(self, None if all_gas else gas, out["rho"], u_g, out["P"], out["cs"])
             form = FORCE_FORMS[o.force]
             if form == GASOLINE2:
                 if o.gasoline2_f == "wadsley":
@@ -294,6 +305,8 @@ class SPHEngine:
             self.last_neighbours = nl
         if self.external.active:
             self.external.add(p.pos, self.acc, self.phi)
+        for module in self.modules:
+            module.add_derivatives(self, vel, u)
         if count_invalid(self.acc, self.acc, self.dudt, p.ptype, False) == 0:
             self._valid = True
             return
@@ -313,13 +326,16 @@ class SPHEngine:
 
     # ------------------------------------------------------------------ run-loop protocol
     def timestep(self) -> float:
-        """Largest stable step: Courant (eq. 2.13) and acceleration (eq. 2.14) criteria, and any
-        :attr:`timestep_limits` (eq. 2.15 for drag)."""
+        """Largest stable step: Courant (eq. 2.13, :math:`C_{\\rm cour} h_a/v_{{\\rm sig},a}` with the
+        largest pair signal speed of each particle) and acceleration (eq. 2.14) criteria of
+        :mod:`dustygas.physics.timestep`, and any :attr:`timestep_limits` (eq. 2.15 for drag)."""
         self._ensure()
         if self.options.fixed_dt > 0:
             return self.options.fixed_dt
-        dt = courant_force_timestep(self.particles.h, self.vsig, self.acc, self.options.c_cour, self.options.c_force)
-        return combined_timestep(dt, *(limit(self) for limit in self.timestep_limits))
+        h, o = self.particles.h, self.options
+        return min_timestep(courant_timestep(h, self.vsig, o.c_cour),
+                            acceleration_timestep(h, self.acc, o.c_force, axis=1),
+                            *(limit(self) for limit in self.timestep_limits))
 
     def advance(self, dt: float) -> None:
         """One kick-drift-kick step of length ``dt`` (:mod:`dustygas.sph.integrator`)."""
@@ -335,6 +351,8 @@ class SPHEngine:
         lo, length, per = self._box_arrays
         eu, ea = self.eos.evolves_energy, self.evolves_alpha
         kick(p.vel, self.acc, p.u, self.dudt, p.alpha, self.dalpha, 0.5 * dt, eu, ea, o.alpha_min, o.alpha_max)
+        for module in self.modules:
+            module.kick(self, 0.5 * dt, False)
         vel_pred = np.empty_like(p.vel)
         u_pred = np.empty_like(p.u)
         alpha_pred = np.empty_like(p.alpha)
@@ -347,9 +365,13 @@ class SPHEngine:
             self._accrete(gone)
             p = self.particles
             vel_pred, u_pred, alpha_pred = vel_pred[keep], u_pred[keep], alpha_pred[keep]
+        for module in self.modules:
+            module.predict(self, dt)
         divv_old = self.divv.copy() if o.switch == "cullen-dehnen" else None  # (after any accretion)
         self.update_derivatives(vel_pred, u_pred, alpha_pred)
         kick(p.vel, self.acc, p.u, self.dudt, p.alpha, self.dalpha, 0.5 * dt, eu, ea, o.alpha_min, o.alpha_max)
+        for module in self.modules:
+            module.kick(self, 0.5 * dt, True)
         if divv_old is not None:
             gas = p.ptype == GAS
             cullen_dehnen_alpha(p.alpha, np.where(gas, self.divv, 0.0), np.where(gas, divv_old, 0.0),
@@ -390,7 +412,13 @@ class SPHEngine:
             out[f"angular_momentum_{ax}"] = float(ang[i])
         out.update(kinetic_energy=ekin, thermal_energy=etherm, potential_energy=epot,
                    total_energy=ekin + etherm + epot)
+        for module in self.modules:
+            module.history(self, out)
         return out
+
+    def messages(self) -> list[str]:
+        """Log lines of the modules (warnings, events) since the last call; the run loop logs them."""
+        return [line for module in self.modules for line in module.messages()]
 
     def _attrs(self) -> dict[str, Any]:
         return {"ndim": self.box.ndim, "box_lo": list(self.box.lo), "box_hi": list(self.box.hi),
@@ -412,6 +440,8 @@ class SPHEngine:
         arrays["accreted_angular_momentum"] = self.accreted_angular_momentum.copy()
         attrs = {**self._attrs(), "accreted_mass": self.accreted_mass, "derivatives_valid": int(self._valid),
                  "options": str(asdict(self.options))}
+        for module in self.modules:
+            attrs.update({f"module_{module.name}_{k}": v for k, v in module.state().items()})
         return arrays, attrs
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
@@ -423,6 +453,9 @@ class SPHEngine:
         self.accreted_angular_momentum = np.array(arrays["accreted_angular_momentum"])
         self.accreted_mass = float(attrs["accreted_mass"])
         self._valid = bool(attrs["derivatives_valid"])
+        for module in self.modules:
+            prefix = f"module_{module.name}_"
+            module.restore_state({k[len(prefix):]: v for k, v in attrs.items() if k.startswith(prefix)})
 
     # ------------------------------------------------------------------ convenience
     def mean_neighbours(self) -> float:

@@ -32,7 +32,7 @@ bitwise-antisymmetric separations, so total momentum is conserved to round-off a
 Each particle gathers from its own neighbour row (no scatter, no atomics): the loop is parallel
 over particles and deterministic. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|`
 (Price 2012 eqs. 84-85, used by the viscosity switches and to predict :math:`h`) and the largest pair
-signal speed (Courant condition, :mod:`dustygas.sph.timestep`). A new pairwise term (e.g. dust
+signal speed (Courant condition, :meth:`dustygas.sph.SPHEngine.timestep`). A new pairwise term (e.g. dust
 drag) is one more block inside the loop of :func:`hydro_forces` or a second loop of the same
 shape over another neighbour table.
 """

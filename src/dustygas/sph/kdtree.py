@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .neighbours import minimum_image
+from .neighbours import _store_neighbours, minimum_image
 
 __all__ = ["build_tree", "tree_search"]
 
@@ -148,7 +148,6 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
     tested against each query particle in two vectorisable passes (as in the cell list)."""
     qorder, qstart, qend, qchild, qlo, qhi, qhmax = qtree
     sorder, sstart, send, schild, slo, shi, shmax = stree
-    cap = index.shape[1]
     r2 = radius * radius
     inv_l = np.zeros(3)
     for d in range(3):
@@ -192,17 +191,4 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
                 dy -= length[1] * np.rint(dy * inv_l[1])
                 dz -= length[2] * np.rint(dz * inv_l[2])
                 d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            n = 0
-            hit = -1
-            for j in range(m):
-                if d2[j] < 0.0:
-                    b = pid[j]
-                    if exclude_self and b == a:
-                        continue
-                    if d2[j] == -r2 * max(ha2, ph2[j]):
-                        hit = b  # zero separation
-                    if n < cap:
-                        index[a, n] = b
-                    n += 1
-            count[a] = n
-            overlap[a] = hit
+            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)

@@ -181,7 +181,6 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
     """For each cell: gather the candidates of the 3^d surrounding cells once (periodic shifts
     applied), then test every query of the cell against them in two vectorisable passes."""
     nx, ny, nz = ncell[0], ncell[1], ncell[2]
-    cap = index.shape[1]
     # minimum image needed along periodic dimensions held in a single cell
     mi_x = periodic[0] and nx == 1
     mi_y = periodic[1] and ny == 1
@@ -265,20 +264,31 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
                 if mi_z:
                     dz -= length[2] * np.rint(dz * inv_lz)
                 d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            n = 0
-            hit = -1
-            for j in range(m):
-                if d2[j] < 0.0:
-                    b = pid[j]
-                    if exclude_self and b == a:
-                        continue
-                    if d2[j] == -r2 * max(ha2, ph2[j]):
-                        hit = b  # zero separation
-                    if n < cap:
-                        index[a, n] = b
-                    n += 1
-            count[a] = n
-            overlap[a] = hit
+            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
+
+
+@njit(inline="always")
+def _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap):
+    """Write the candidates with d2 < 0 (inside max(h_a, h_b) * radius) into row a of the list.
+
+    ``count[a]`` is the true number of neighbours even when it exceeds the row capacity (the caller
+    then grows the list and searches again); ``overlap[a]`` records a neighbour at zero separation.
+    """
+    cap = index.shape[1]
+    n = 0
+    hit = -1
+    for j in range(m):
+        if d2[j] < 0.0:
+            b = pid[j]
+            if exclude_self and b == a:
+                continue
+            if d2[j] == -r2 * max(ha2, ph2[j]):
+                hit = b  # zero separation
+            if n < cap:
+                index[a, n] = b
+            n += 1
+    count[a] = n
+    overlap[a] = hit
 
 
 @njit(parallel=True, cache=True)
@@ -372,17 +382,19 @@ class NeighbourFinder:
         return _bin(pos, origin, inv_size, ncell, per)[1]
 
     def find(self, pos: np.ndarray, h: np.ndarray, query_pos: np.ndarray | None = None,
-             query_h: np.ndarray | None = None) -> NeighbourList:
+             query_h: np.ndarray | None = None, allow_overlap: bool = False) -> NeighbourList:
         """Neighbours of every query particle among the sources ``(pos, h)``.
 
         Without ``query_pos`` the sources query themselves (self excluded). Raises
-        :class:`SimulationError` if two particles sit at exactly the same position.
+        :class:`SimulationError` if two particles sit at exactly the same position, unless
+        ``allow_overlap`` (particles of different species, e.g. a dust particle on top of a gas
+        particle, may coincide: their pair terms vanish).
         """
         same = query_pos is None
         qpos = pos if same else query_pos
         qh = h if same else query_h
         if self.choose(h if same else np.concatenate([h, qh])) == "tree":
-            return self._find_tree(pos, h, qpos, qh, same)
+            return self._find_tree(pos, h, qpos, qh, same, allow_overlap)
         hmax = float(max(h.max(initial=0.0), qh.max(initial=0.0)))
         origin, inv_size, ncell, length, per = self._grid([pos] if same else [pos, qpos], hmax)
         start, sorder = _bin(pos, origin, inv_size, ncell, per)
@@ -401,9 +413,9 @@ class NeighbourFinder:
             if need <= self._capacity:
                 break
             self._capacity = int(need * 1.25) + 8
-        return self._finish(index, count, overlap, qpos, qh, qorder)
+        return self._finish(index, count, overlap, qpos, qh, qorder, allow_overlap)
 
-    def _find_tree(self, pos, h, qpos, qh, same) -> NeighbourList:
+    def _find_tree(self, pos, h, qpos, qh, same, allow_overlap=False) -> NeighbourList:
         from .kdtree import build_tree, tree_search
 
         lo, length, per = self.box.arrays()
@@ -422,11 +434,11 @@ class NeighbourFinder:
             if need <= self._capacity:
                 break
             self._capacity = int(need * 1.25) + 8
-        return self._finish(index, count, overlap, qpos, qh, qtree[0])
+        return self._finish(index, count, overlap, qpos, qh, qtree[0], allow_overlap)
 
     @staticmethod
-    def _finish(index, count, overlap, qpos, qh, order) -> NeighbourList:
-        bad = np.flatnonzero(overlap >= 0)
+    def _finish(index, count, overlap, qpos, qh, order, allow_overlap=False) -> NeighbourList:
+        bad = np.flatnonzero(overlap >= 0) if not allow_overlap else np.empty(0, np.int64)
         if bad.size:
             a = int(bad[0])
             raise SimulationError(

@@ -1,0 +1,109 @@
+"""``dustybox``: uniform gas and dust whose relative velocity decays by drag (Laibe & Price 2011).
+
+With uniform densities nothing but drag acts; the centre-of-mass velocity stays constant and
+the relative velocity decays on the mixture stopping time
+:math:`t_s = \\rho_g\\rho_d/(K(\\rho_g+\\rho_d))` (``numbers.md`` §3):
+
+.. math::
+
+    \\Delta v(t) = \\Delta v_0 e^{-t/t_s}, \\qquad v_g = \\bar v - \\frac{\\rho_d}{\\rho}\\Delta v, \\qquad
+    v_d = \\bar v + \\frac{\\rho_g}{\\rho}\\Delta v.
+
+Defaults are Phantom's unit test (``numbers.md`` §3): :math:`\\rho_g = \\rho_d = 1`, :math:`v_d = 1`,
+:math:`v_g = 0`, :math:`K = 0.35`, :math:`c_s = 1`, :math:`\\Delta t = 10^{-3}`, 100 steps, quintic kernel, in
+a 3D periodic box of hexagonal-close-packed gas particles with dust particles at the same
+positions (two-fluid); ``dust.method = one-fluid`` uses mixture particles with the full one-fluid
+equations (the terminal-velocity approximation has no relative velocity to decay). With
+``problem.eos = adiabatic`` the drag heats the gas and kinetic plus thermal energy is conserved.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..config import Param, with_defaults
+from ..errors import ConfigError
+from ..runner import RUN_SCHEMA
+from ..sph import Box, EquationOfState, SPHEngine, get_kernel
+from ..sph.dust.schema import DUST_SCHEMA, drag_law_from_config, one_fluid_from_config, two_fluid_from_config
+from ..sph.dust.setup import dusty_particles, lattice
+from ..sph.schema import SPH_SCHEMA, options_from_config
+from . import Problem, preset, register
+
+__all__ = ["DustyBox", "dustybox_exact"]
+
+
+def dustybox_exact(t, v_gas0: float, v_dust0: float, rho_gas: float, rho_dust: float, ts: float):
+    """:math:`(v_g, v_d)` at time ``t`` (module docstring)."""
+    rho = rho_gas + rho_dust
+    vbar = (rho_gas * v_gas0 + rho_dust * v_dust0) / rho
+    dv = (v_dust0 - v_gas0) * np.exp(-np.asarray(t, dtype=np.float64) / ts)
+    return vbar - rho_dust / rho * dv, vbar + rho_gas / rho * dv
+
+
+@register
+class DustyBox(Problem):
+    name = "dustybox"
+    summary = "Uniform gas and dust, relative velocity decaying by drag (Laibe & Price 2011); exact solution."
+    schema = {
+        "run": with_defaults(RUN_SCHEMA, tlim=0.1, log_every=1000),
+        "sph": with_defaults(SPH_SCHEMA, kernel="quintic", alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0,
+                             h_tolerance=1e-6, fixed_dt=1e-3),
+        "dust": with_defaults(DUST_SCHEMA, K=0.35, model="full", reconstruction="none"),
+        "problem": {
+            "ndim": Param(3, "number of dimensions", choices=(1, 3)),
+            "nx": Param(24, "particles of each species along x (box length 1)", min=8),
+            "layers": Param(12, "rows and layers across the 3D box (even)", min=2),
+            "rho_gas": Param(1.0, "gas density", min=0.0, min_open=True),
+            "rho_dust": Param(1.0, "dust density", min=0.0, min_open=True),
+            "v_gas": Param(0.0, "initial gas velocity along x", "code velocity"),
+            "v_dust": Param(1.0, "initial dust velocity along x", "code velocity"),
+            "cs": Param(1.0, "sound speed", "code velocity", min=0.0, min_open=True),
+            "eos": Param("isothermal", "equation of state (adiabatic: drag heats the gas)",
+                         choices=("isothermal", "adiabatic")),
+            "gamma": Param(5.0 / 3.0, "adiabatic index", min=1.0, min_open=True),
+        },
+    }
+
+    def validate(self, cfg) -> None:
+        if cfg.dust.method == "one-fluid" and cfg.dust.model != "full":
+            raise ConfigError("dust.model = terminal-velocity has no relative velocity: the dustybox needs "
+                              "dust.model = full with dust.method = one-fluid")
+        if cfg.problem.ndim == 3 and cfg.problem.layers % 2:
+            raise ConfigError(f"problem.layers = {cfg.problem.layers}: a close-packed lattice needs an even number")
+
+    def stopping_time(self, cfg) -> float:
+        """Mixture stopping time of the configured densities (for :func:`dustybox_exact`)."""
+        p = cfg.problem
+        law = drag_law_from_config(cfg.dust, self._gamma(cfg))
+        rho = p.rho_gas + p.rho_dust
+        return float(law.one_fluid_stopping_time(np.array([rho]), np.array([p.rho_dust / rho]),
+                                                 np.array([p.cs]))[0])
+
+    @staticmethod
+    def _gamma(cfg) -> float:
+        return cfg.problem.gamma if cfg.problem.eos == "adiabatic" else 1.0
+
+    def build(self, cfg) -> SPHEngine:
+        p, d, opts = cfg.problem, cfg.dust, options_from_config(cfg.sph)
+        pos, hi = lattice(p.ndim, p.nx, p.layers, -0.5)
+        lo = np.array([-0.5, 0.0, 0.0][: p.ndim])
+        volume = float(np.prod(hi - lo))
+        kernel = get_kernel(opts.kernel, p.ndim)
+        gamma = self._gamma(cfg)
+        if p.eos == "adiabatic":
+            eos = EquationOfState.adiabatic(gamma)
+            u = p.cs**2 / (gamma * (gamma - 1.0))
+        else:
+            eos, u = EquationOfState.isothermal(p.cs), 0.0
+        particles, init = dusty_particles(d.method, pos, volume, p.rho_gas, p.rho_dust, p.v_gas, p.v_dust,
+                                          opts.hfact or kernel.default_hfact, p.ndim, u_gas=u)
+        if d.method == "one-fluid":
+            module = one_fluid_from_config(d, init["dust_fraction"], gamma, delta_v=init["delta_v"])
+        else:
+            module = two_fluid_from_config(d, gamma)
+        return SPHEngine(particles, Box.periodic_box(p.ndim, tuple(lo), tuple(hi)), eos, opts, modules=(module,))
+
+
+preset("dustybox-1d", DustyBox, "Dustybox in a 1D periodic row of particles (quintic kernel).",
+       problem={"ndim": 1, "nx": 64})

@@ -1,0 +1,124 @@
+"""Thesis Figure 3.2: vertical profiles of the dust fraction in the settling test, upwind vs arithmetic.
+
+The ``dust-settle`` problem (1D Gaussian column, :math:`\\epsilon = 0.099`, :math:`\\tau_s = 0.01` at the
+midplane, terminal-velocity one-fluid dust, no dust-fraction time-step limit as in the thesis's
+runs) is run three times: with the upwind exchange (thesis eq. 3.17), and with the arithmetic
+exchange (eq. 3.4) with and without the floor/ceiling clamp of §3.2.4 (floor 0, ceiling 1).
+:func:`settling_runs` is shared with Figure 3.3 (one set of runs per process and scale).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+
+import numpy as np
+
+from . import figure
+
+__all__ = ["SCHEMES", "settling_runs", "fig3_2"]
+
+#: label -> ``dust-settle`` overrides
+SCHEMES = {
+    "upwind": ("dust.exchange=upwind", "dust.clamp=true"),
+    "arithmetic_clamped": ("dust.exchange=arithmetic", "dust.clamp=true"),
+    "arithmetic": ("dust.exchange=arithmetic",),
+}
+ORBIT = 2.0 * math.pi
+
+
+@functools.lru_cache(maxsize=2)
+def settling_runs(quick: bool = True) -> dict:
+    """Run the settling test with every scheme; profiles at 0, 1/2, 1, 2 (and 4) orbits, the dust mass
+    and clamp counts every 0.05/Omega. One numba thread: for a few hundred particles the cost of
+    waking a second thread for every kernel exceeds the work."""
+    import numba
+
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        return _settling_runs(quick)
+    finally:
+        numba.set_num_threads(threads)
+
+
+def _settling_runs(quick: bool) -> dict:
+    from ..problems import get_problem
+    from ..sph.dust.setup import dust_module
+
+    particles, orbits = (400, 2.0) if quick else (1600, 4.0)
+    profile_orbits = [0.0, 0.5, 1.0, 2.0] + ([] if quick else [4.0])
+    prob = get_problem("dust-settle")
+    out = {"particles": particles, "profile_orbits": profile_orbits, "schemes": {}}
+    for label, overrides in SCHEMES.items():
+        cfg = prob.config(overrides=[f"problem.particles={particles}", *overrides])
+        eng = prob.build(cfg)
+        module = dust_module(eng)
+        m0 = module.dust_mass(eng)
+        tend = orbits * ORBIT
+        samples = np.arange(0.0, tend + 1e-9, 0.05)
+        mass, clamps, eps_min = [], [], []
+        profiles = []
+        k = 0
+        prof_times = [o * ORBIT for o in profile_orbits]
+        while True:
+            while k < samples.size and eng.t >= samples[k] - 1e-12:
+                h = eng.history()
+                mass.append(h["dust_mass"] / m0)
+                clamps.append(h.get("clamp_events", 0.0))
+                eps_min.append(h["min_dust_fraction"])
+                k += 1
+            while len(profiles) < len(prof_times) and eng.t >= prof_times[len(profiles)] - 1e-12:
+                order = np.argsort(eng.particles.pos[:, 0])
+                profiles.append((eng.particles.pos[order, 0].copy(), module.dust_fractions(eng)[order].copy()))
+            if eng.t >= tend * (1 - 1e-14):
+                break
+            nxt = min(samples[k] if k < samples.size else tend,
+                      prof_times[len(profiles)] if len(profiles) < len(prof_times) else tend, tend)
+            eng.advance(min(eng.timestep(), nxt - eng.t))
+        out["schemes"][label] = {"time": samples[: len(mass)], "mass": np.array(mass), "clamps": np.array(clamps),
+                                 "eps_min": np.array(eps_min), "profiles": profiles,
+                                 "created": module.clamp_mass_created, "destroyed": module.clamp_mass_destroyed,
+                                 "m0": m0, "final_mass": module.dust_mass(eng) / m0}
+    return out
+
+
+@figure("fig3.2", "Settling test: dust fraction eps(z) at several times, upwind (eq. 3.17) vs arithmetic (eq. 3.4)",
+        cost="10 s")
+def fig3_2(output: Path, quick: bool = True) -> list[Path]:
+    from ..plot import Column, house_style, new_figure, save_figure
+
+    runs = settling_runs(quick)
+    times = runs["profile_orbits"]
+    cols = []
+    with house_style():
+        fig, axes = new_figure(len(times), 2, width=7.0, height=1.9 * len(times), sharex=True, sharey=True)
+        for row, t_orb in enumerate(times):
+            for col, (label, title) in enumerate([("upwind", "upwind (eq. 3.17)"),
+                                                  ("arithmetic_clamped", "arithmetic (eq. 3.4)")]):
+                ax = axes[row, col]
+                z, eps = runs["schemes"][label]["profiles"][row]
+                ax.plot(z, eps, color="C0" if col == 0 else "C3", lw=1.3,
+                        label="clamped to [0, 1]" if col == 1 else None)
+                cols += [Column(f"z_{label}_{row}", z, "H", f"height of each particle at {t_orb:g} orbits ({label})"),
+                         Column(f"eps_{label}_{row}", eps, "", f"dust fraction at {t_orb:g} orbits ({label})")]
+                if col == 1:
+                    z2, eps2 = runs["schemes"]["arithmetic"]["profiles"][row]
+                    ax.plot(z2, eps2, color="0.45", lw=0.9, ls="--", label="no clamp")
+                    cols += [Column(f"z_arithmetic_{row}", z2, "H", f"height at {t_orb:g} orbits (arithmetic, no clamp)"),
+                             Column(f"eps_arithmetic_{row}", eps2, "", f"dust fraction at {t_orb:g} orbits "
+                                    "(arithmetic, no clamp)")]
+                ax.axhline(0.0, color="k", lw=0.5)
+                ax.text(0.03, 0.85, f"{t_orb:g} orbit{'' if t_orb == 1 else 's'}", transform=ax.transAxes, fontsize=8)
+                if row == 0:
+                    ax.set_title(title)
+                if row == len(times) - 1:
+                    ax.set_xlabel(r"$z/H$")
+                if col == 0:
+                    ax.set_ylabel(r"$\epsilon$")
+        axes[0, 1].legend(loc="upper right", fontsize=7)
+        return save_figure(fig, output / "fig3_2.png", cols,
+                           title="thesis Figure 3.2: dust fraction in the settling test",
+                           description=f"dust-settle, {runs['particles']} particles, tau_s = 0.01 at the midplane, "
+                                       "terminal-velocity one-fluid dust, no eps time-step limit")
