@@ -18,7 +18,8 @@ import pytest
 
 from dustygas.physics import nsh_velocities_multi
 from dustygas.problems import get_problem
-from dustygas.problems.dustybox_grid import dustybox_solution, mixture_stopping_time
+from dustygas.physics.drag import mixture_stopping_time
+from dustygas.problems.dustybox_grid import dustybox_solution
 
 
 def run_to_end(eng, tlim):
@@ -74,5 +75,5 @@ def test_dustybox_second_order_and_phantom_tolerance(integrator):
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all(orders > 1.9), (errors, orders)
     assert errors[1] < 1e-5, errors  # Phantom's unit test tolerance on |v_d|; measured 3.1e-6 / 3.5e-6
-    ts = mixture_stopping_time(1.0, 1.0, 0.35)
+    ts = mixture_stopping_time(0.35, 1.0, 1.0)
     assert ts == pytest.approx(1 / 0.7)

@@ -27,11 +27,12 @@ from ..grid import GridEngine, Mesh
 from ..grid.params import GRID
 from ..particles import ParticleGridEngine, ParticleStore
 from ..particles.params import PARTICLES, lattice_positions, particle_engine_from_config
+from ..physics.drag import mixture_stopping_time
 from ..runner import RUN_SCHEMA
 from . import Problem, register
 from .si_linear import SI_SCHEME
 
-__all__ = ["DustyBoxGrid", "dustybox_solution", "mixture_stopping_time"]
+__all__ = ["DustyBoxGrid", "dustybox_solution"]
 
 
 def dustybox_solution(t, rho_g: float, rho_d: float, K: float, v_g0: float, v_d0: float) -> tuple:
@@ -42,7 +43,7 @@ def dustybox_solution(t, rho_g: float, rho_d: float, K: float, v_g0: float, v_d0
     (0.0, 1.0)
     """
     t = np.asarray(t, dtype=np.float64)
-    ts = rho_g * rho_d / (K * (rho_g + rho_d))
+    ts = float(mixture_stopping_time(K, rho_g, rho_d))
     vcm = (rho_g * v_g0 + rho_d * v_d0) / (rho_g + rho_d)
     dv = (v_d0 - v_g0) * np.exp(-t / ts)
     return vcm - rho_d / (rho_g + rho_d) * dv, vcm + rho_g / (rho_g + rho_d) * dv
@@ -94,9 +95,3 @@ class DustyBoxGrid(Problem):
         mass = p.rho_d * mesh.cell_volume / lattice**mesh.ndim
         store = ParticleStore.create(pos, vel, 0, mass)
         return particle_engine_from_config(cfg, gas, store, [p.rho_d / p.K], cls=DustyBoxEngine)
-
-
-def mixture_stopping_time(rho_g: float, rho_d: float, K: float) -> float:
-    """``rho_g rho_d / (K (rho_g + rho_d))`` (numbers.md §3)."""
-    return rho_g * rho_d / (K * (rho_g + rho_d))
-
