@@ -6,13 +6,4 @@ that bit for bit. One thread keeps the many small kernel launches of these short
 a machine whose cores other test sessions share.
 """
 
-import numba
-import pytest
-
-
-@pytest.fixture(autouse=True)
-def _one_numba_thread():
-    before = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(before)
+from _threads import one_numba_thread  # noqa: F401  (autouse fixture)
