@@ -59,3 +59,15 @@ def test_problems_lists_and_describes(tmp_path):
     proc = cli("problems", "toy-oscillator", cwd=tmp_path)
     assert proc.returncode == 0
     assert "cfl    = 0.01" in proc.stdout and "omega * dt  (0 < value <= 1)" in proc.stdout
+
+
+def test_reproduce_list_names_every_figure_in_thesis_order(tmp_path):
+    from dustygas.reproduce import figure_names
+
+    proc = cli("reproduce", "--list", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    listed = [line.split()[0] for line in proc.stdout.splitlines()]
+    assert listed == figure_names() and len(listed) >= 9
+    # chapter, then figure number, then a suffixed variant after its parent figure
+    assert listed.index("fig3.5") < listed.index("fig4.1") < listed.index("fig4.3") < listed.index("fig4.3-settling")
+    assert listed.index("fig4.3-settling") < listed.index("fig4.6")

@@ -24,9 +24,11 @@ def main(args: argparse.Namespace) -> int:
     from ..reproduce import figure_names, get_figure
 
     if args.list:
-        for name in figure_names():
+        names = figure_names()
+        width = max(map(len, names))
+        for name in names:
             spec = get_figure(name)
-            print(f"{name:<10} {spec.summary}  [{spec.cost}]")
+            print(f"{name:<{width}}  {spec.summary}  [{spec.cost}]")
         return 0
     names = figure_names() if args.all else args.figures
     if not names:

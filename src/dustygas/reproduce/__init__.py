@@ -55,8 +55,10 @@ def _discover() -> None:
 
 
 def _key(name: str) -> tuple:
+    """Thesis order: fig3.5 < fig4.1 < fig4.3 < fig4.3-settling < fig4.6 (numbers first, then the name)."""
     parts = name.removeprefix("fig").replace("-", ".").split(".")
-    return tuple(int(p) if p.isdigit() else 10**6 for p in parts) + (name,)
+    numbers = [int(p) if p.isdigit() else 10**6 for p in parts]
+    return tuple(numbers + [-1] * (8 - len(numbers))), name
 
 
 def figure_names() -> list[str]:
