@@ -41,6 +41,9 @@ def run(
         Nested mapping of overrides (Python alternative to ``set``).
     walltime
         Overrides ``run.walltime`` (seconds).
+    progress
+        ``False`` (default): no progress output; ``True``: a tqdm bar on stderr; ``None``: the
+        bar on a terminal and ``cycle= time= dt=`` lines otherwise (what the CLI does).
 
     The configuration and the initial state are fully validated before the run directory is
     created, so a bad input leaves nothing on disk.

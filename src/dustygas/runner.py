@@ -150,7 +150,10 @@ class RunLoop:
         self.run = cfg.run
         self.rundir = rundir
         self.state = _LoopState()
-        self.progress = sys.stderr.isatty() if progress is None else progress
+        # progress: True -> tqdm bar; None -> the bar on a terminal, ``cycle= time= dt=`` lines
+        # otherwise (the CLI); False -> no progress output (the Python API's default)
+        self.progress = sys.stderr.isatty() if progress is None else bool(progress)
+        self.progress_lines = progress is None and not self.progress
 
     # ----------------------------------------------------------------- outputs
     def _attrs(self) -> dict[str, Any]:
@@ -295,7 +298,7 @@ class RunLoop:
                         bar.n = min(eng.t, tlim)
                         bar.set_postfix_str(f"cycle={eng.cycle} dt={dt:.3g}", refresh=False)
                         bar.update(0)
-                    elif eng.cycle % run.log_every == 0:
+                    elif self.progress_lines and eng.cycle % run.log_every == 0:
                         print(f"cycle={eng.cycle} time={eng.t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
                     want_ckpt = eng.t >= s.next_checkpoint or (
                         run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall

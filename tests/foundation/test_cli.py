@@ -71,3 +71,17 @@ def test_reproduce_list_names_every_figure_in_thesis_order(tmp_path):
     # chapter, then figure number, then a suffixed variant after its parent figure
     assert listed.index("fig3.5") < listed.index("fig4.1") < listed.index("fig4.3") < listed.index("fig4.3-settling")
     assert listed.index("fig4.3-settling") < listed.index("fig4.6")
+
+
+def test_progress_lines_on_a_pipe_and_none_when_quiet(tmp_path):
+    loud = cli("run", "toy-oscillator", "-o", "loud", "--set", "run.tlim=1.0", "--set", "run.log_every=10", cwd=tmp_path)
+    quiet = cli("run", "toy-oscillator", "-o", "quiet", "--set", "run.tlim=1.0", "-q", cwd=tmp_path)
+    assert loud.returncode == 0 and quiet.returncode == 0, (loud.stderr, quiet.stderr)
+    n_steps = int(loud.stderr.split("cycles=")[1].split()[0])
+    assert loud.stderr.count("cycle=") == n_steps // 10 and n_steps >= 10
+    assert "cycle=" not in quiet.stderr and "finished:" in quiet.stderr
+    # -q is an output choice, not a parameter: the two runs record the same configuration
+    def config(run):
+        return [line for line in (tmp_path / run / "config.toml").read_text().splitlines() if "log_every" not in line]
+
+    assert config("loud") == config("quiet") and "tlim = 1.0" in config("quiet")

@@ -42,8 +42,6 @@ def main(args: argparse.Namespace) -> int:
         if args.threads < 1:
             raise UserError(f"--threads {args.threads}: expected a positive integer")
         overrides.append(f"run.threads={args.threads}")
-    if args.quiet:
-        overrides.append("run.log_every=1000000000")
     progress = False if args.quiet else None
     if args.restart:
         if args.problem or args.config or args.output:
