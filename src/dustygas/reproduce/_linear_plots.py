@@ -107,6 +107,15 @@ def plot_growth_map(gmap, path: Path, title: str = "") -> Path:
     return path
 
 
+def _legend_label(name: str) -> str:
+    """``"taus=0.1 mu=3"`` (the CSV column name) as ``τ_s = 0.1, μ = 3`` in mathtext."""
+    symbols = {"taus": r"$\tau_s$", "mu": r"$\mu$"}
+    parts = [p.split("=", 1) for p in name.split()]
+    if not all(len(p) == 2 and p[0] in symbols for p in parts):
+        return name
+    return ", ".join(f"{symbols[key]} = {value}" for key, value in parts)
+
+
 def plot_growth_vs_k(k, curves: list[tuple[str, np.ndarray]], path: Path, title: str, note: str,
                      ylim=(1e-6, 1.0), markers: Sequence[tuple[float, float, int]] = ()) -> Path:
     """Growth rate (log axis; damped or non-growing points left out) versus |K|.
@@ -118,7 +127,7 @@ def plot_growth_vs_k(k, curves: list[tuple[str, np.ndarray]], path: Path, title:
     fig, ax = plt.subplots(figsize=(7.2, 4.8), constrained_layout=True)
     lines = []
     for label, s in curves:
-        lines += ax.loglog(k, np.where(s > 0, s, np.nan), label=label, lw=1.4)
+        lines += ax.loglog(k, np.where(s > 0, s, np.nan), label=_legend_label(label), lw=1.4)
     for kk, s, i in markers:
         ax.plot([kk], [s], marker="x", ms=9, mew=2.2, ls="none", color=lines[i].get_color())
     ax.set_xlabel(r"wavenumber $|K| = |k|\eta r$")
