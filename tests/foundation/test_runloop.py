@@ -7,32 +7,12 @@ import numpy as np
 import pytest
 
 import _toyproblem  # noqa: F401  (registers toy-oscillator)
+from _runs import assert_runs_identical, run_outputs
 from dustygas import api
 from dustygas.io import read_h5
 from dustygas.io.rundir import RunDirectory
 
 from ._cli import cli, cli_popen
-
-
-def _outputs(path):
-    rd = RunDirectory(path)
-    out = {}
-    for f in rd.snapshots():
-        arrays, attrs = read_h5(f)
-        out[f.name] = (arrays, {k: v for k, v in attrs.items()})
-    out["history"] = read_h5(rd.history_file)
-    return out
-
-
-def _assert_identical(a, b):
-    assert a.keys() == b.keys()
-    for key in a:
-        arrays_a, attrs_a = a[key]
-        arrays_b, attrs_b = b[key]
-        assert arrays_a.keys() == arrays_b.keys(), key
-        for name in arrays_a:
-            np.testing.assert_array_equal(arrays_a[name], arrays_b[name], err_msg=f"{key}:{name}")
-        assert attrs_a == attrs_b, key
 
 
 def test_leapfrog_energy_and_snapshot_times(tmp_path):
@@ -67,7 +47,7 @@ def test_sigkill_after_checkpoint_restarts_bit_identically(tmp_path):
 
     again = cli("run", "--restart", "killed", cwd=tmp_path)
     assert again.returncode == 0, again.stderr
-    _assert_identical(_outputs(tmp_path / "ref"), _outputs(tmp_path / "killed"))
+    assert_runs_identical(run_outputs(tmp_path / "ref"), run_outputs(tmp_path / "killed"))
 
 
 def test_sigterm_writes_checkpoint_and_restart_finishes(tmp_path):
@@ -86,7 +66,7 @@ def test_sigterm_writes_checkpoint_and_restart_finishes(tmp_path):
     assert RunDirectory(tmp_path / "term").checkpoints()
     again = cli("run", "--restart", "term", cwd=tmp_path)
     assert again.returncode == 0, again.stderr
-    _assert_identical(_outputs(tmp_path / "ref"), _outputs(tmp_path / "term"))
+    assert_runs_identical(run_outputs(tmp_path / "ref"), run_outputs(tmp_path / "term"))
 
 
 def test_walltime_stops_with_checkpoint(tmp_path):

@@ -12,29 +12,12 @@ import pytest
 from dustygas import api
 from dustygas.errors import SetupError, SimulationError
 from dustygas.grid import GridEngine, Mesh
-from dustygas.io import read_h5
-from dustygas.io.rundir import RunDirectory
+
+from _runs import assert_runs_identical, run_outputs
 
 from ._helpers import run_to
 
 SRC = Path(__file__).resolve().parents[2] / "src"
-
-
-def _outputs(path):
-    rd = RunDirectory(path)
-    out = {f.name: read_h5(f) for f in rd.snapshots()}
-    out["history"] = read_h5(rd.history_file)
-    return out
-
-
-def _assert_identical(a, b):
-    assert a.keys() == b.keys()
-    for key in a:
-        (arr_a, att_a), (arr_b, att_b) = a[key], b[key]
-        assert arr_a.keys() == arr_b.keys()
-        for name in arr_a:
-            np.testing.assert_array_equal(arr_a[name], arr_b[name], err_msg=f"{key}:{name}")
-        assert att_a == att_b
 
 
 @pytest.mark.parametrize("problem, extra", [
@@ -49,7 +32,7 @@ def test_restart_from_checkpoint_is_bit_identical(tmp_path, problem, extra):
     assert part.status == "max_cycles"
     again = api.restart(tmp_path / "part", set=["run.max_cycles=0"])
     assert again.status == "finished" and again.cycles == full.cycles - full.cycles // 2
-    _assert_identical(_outputs(tmp_path / "full"), _outputs(tmp_path / "part"))
+    assert_runs_identical(run_outputs(tmp_path / "full"), run_outputs(tmp_path / "part"))
 
 
 def _shearing_box(oa: bool, integrator: str = "vl2", shape=(24, 20, 1)) -> GridEngine:

@@ -7,30 +7,11 @@ and history array with an uninterrupted run, exactly. (The SIGKILL version on th
 run, issue 5 acceptance 6, is in ``test_streaming_slow.py``.)
 """
 
-import numpy as np
+from _runs import assert_runs_identical, run_outputs
 
 from dustygas import api
 from dustygas.io import read_h5
 from dustygas.io.rundir import RunDirectory
-
-
-def outputs(path):
-    rd = RunDirectory(path)
-    out = {f.name: read_h5(f) for f in rd.snapshots()}
-    out["history"] = read_h5(rd.history_file)
-    return out
-
-
-def assert_identical(a, b):
-    assert a.keys() == b.keys()
-    for key in a:
-        (arr_a, attrs_a), (arr_b, attrs_b) = a[key], b[key]
-        assert arr_a.keys() == arr_b.keys(), key
-        for name in arr_a:
-            np.testing.assert_array_equal(arr_a[name], arr_b[name], err_msg=f"{key}:{name}")
-        assert attrs_a.keys() == attrs_b.keys(), key
-        for name in attrs_a:
-            assert np.array_equal(attrs_a[name], attrs_b[name]), (key, name)
 
 
 def test_stopped_and_restarted_run_is_bit_identical(tmp_path):
@@ -42,8 +23,8 @@ def test_stopped_and_restarted_run_is_bit_identical(tmp_path):
     assert first.status == "max_cycles" and RunDirectory(tmp_path / "stopped").checkpoints()
     again = api.restart(tmp_path / "stopped", set=["run.max_cycles=0"])
     assert again.status == "finished" and again.cycles == ref.cycles - 140
-    out_ref, out = outputs(tmp_path / "ref"), outputs(tmp_path / "stopped")
+    out_ref, out = run_outputs(tmp_path / "ref"), run_outputs(tmp_path / "stopped")
     assert len(out_ref) == 6  # five snapshots and the history
-    assert_identical(out_ref, out)
+    assert_runs_identical(out_ref, out)
     snap, _ = read_h5(RunDirectory(tmp_path / "ref").snapshots()[-1])
     assert snap["particles/pos"].shape == (3, 256) and snap["rho_p"].shape == (16, 1, 16)

@@ -17,12 +17,13 @@ import time
 
 import pytest
 
+from _runs import assert_runs_identical, run_outputs
+
 from dustygas import api
 from dustygas.analysis.growth import measure_growth
 from dustygas.io.rundir import RunDirectory
 
 from foundation._cli import PRELUDE, cli_popen, env
-from .test_restart import assert_identical, outputs
 
 LINA = 0.4190091323
 LINB = 0.0154862262
@@ -61,7 +62,7 @@ def test_lina_killed_at_t3_and_restarted_is_bit_identical(lina_run, tmp_path):
     again = subprocess.run([sys.executable, "-c", PRELUDE, "run", "--restart", "killed"], cwd=tmp_path, env=env(),
                            capture_output=True, text=True, timeout=1800)
     assert again.returncode == 0, again.stderr
-    assert_identical(outputs(lina_run), outputs(tmp_path / "killed"))
+    assert_runs_identical(run_outputs(lina_run), run_outputs(tmp_path / "killed"))
 
 
 @pytest.mark.slow
