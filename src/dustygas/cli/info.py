@@ -36,6 +36,14 @@ def main(args: argparse.Namespace) -> int:
     rows += [(m, _version(m)) for m in ("numpy", "scipy", "numba", "h5py", "matplotlib", "astropy", "tqdm")]
     rows.append(("numba threads", f"{numba.get_num_threads()} of {numba.config.NUMBA_NUM_THREADS} "
                  f"(layer: {numba.config.THREADING_LAYER})"))
+    if hasattr(os, "getloadavg"):
+        load = os.getloadavg()[0]
+        advice = ""
+        if numba.get_num_threads() > 1 and load >= 0.9:  # about one core busy elsewhere
+            # numba's OpenMP threads wait for each other at the end of every parallel region: a
+            # thread sharing a core with another busy process slows the whole team (CONTRIBUTING.md)
+            advice = "  (other work is running: parallel runs may be faster with --threads 1)"
+        rows.append(("load average", f"{load:.2f} (1 min){advice}"))
     try:
         from mpi4py import MPI
 
