@@ -17,7 +17,7 @@ Anchors (numbers.md §4; Phantom v2026.0.1, gfortran -O3 -fopenmp, measured on t
 two-fluid dustywave at 31.4k particle-updates/s on one thread and 62.3k on two. Target (issue 7):
 >= 2x Phantom on one thread (62.8k/s); aim 4x (125.6k/s).
 
-Run alone: ``flock /tmp/dustygas-bench.lock python benchmarks/bench_dustysph.py``.
+Run alone: ``flock benchmarks/.lock python benchmarks/bench_dustysph.py``.
 """
 
 from __future__ import annotations

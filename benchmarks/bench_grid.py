@@ -16,7 +16,7 @@ simulated time it takes 1.6x (2D) and 1.2x (3D, against 0.4) the cycles of CTU.
 
 Usage::
 
-    flock /tmp/dustygas-bench.lock python benchmarks/bench_grid.py            # everything
+    flock benchmarks/.lock python benchmarks/bench_grid.py            # everything
     python benchmarks/bench_grid.py --cases 2d64xz 3d32 --threads 1 --seconds 2
 """
 

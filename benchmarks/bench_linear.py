@@ -11,7 +11,7 @@ Prints, for 1 and 2 numba threads:
 Anchors (numbers.md §2, this machine): numpy batched 8×8 complex eigvals ≈ 42,000/s.
 Targets (issue 3): ≥ 500,000 evaluations/s (both cores allowed); 200×200 map < 10 s.
 
-Run alone: ``flock /tmp/dustygas-bench.lock python benchmarks/bench_linear.py``.
+Run alone: ``flock benchmarks/.lock python benchmarks/bench_linear.py``.
 """
 
 from __future__ import annotations

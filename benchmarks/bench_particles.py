@@ -16,7 +16,7 @@ cell).
 
 Usage::
 
-    flock /tmp/dustygas-bench.lock python benchmarks/bench_particles.py            # everything
+    flock benchmarks/.lock python benchmarks/bench_particles.py            # everything
     python benchmarks/bench_particles.py --quick                                      # timed rows only
 """
 

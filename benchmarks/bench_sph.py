@@ -16,7 +16,7 @@ benchmarks/RESULTS.md for how): the same 32^3 box at 130k particle-updates/s on 
 Targets (issue 6): >= 300k particle-updates/s per thread at 32^3; two threads >= 1.8x one;
 >= 2x Phantom per thread.
 
-Run alone: ``flock /tmp/dustygas-bench.lock python benchmarks/bench_sph.py [n ...]``.
+Run alone: ``flock benchmarks/.lock python benchmarks/bench_sph.py [n ...]``.
 """
 
 from __future__ import annotations
