@@ -24,10 +24,9 @@ from __future__ import annotations
 
 import os
 import sys
-import time
 
 import numba
-import numpy as np
+from _timing import interleaved_step_rates
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "src"))
 
@@ -45,22 +44,10 @@ def build(*overrides):
 
 
 def throughput(overrides: tuple[str, ...], thread_counts: tuple[int, ...], steps: int, repeats: int):
-    """Best and median particle-updates/s per thread count over ``repeats`` timings of ``steps``
-    steps, the thread counts interleaved so that they see the same (shared) machine."""
+    """Particle count and particle-updates/s (best, median) per thread count."""
     eng = build(*overrides)
-    for threads in thread_counts:  # compile, first neighbour tables
-        numba.set_num_threads(threads)
-        eng.advance(eng.timestep())
-    times: dict[int, list[float]] = {t: [] for t in thread_counts}
-    for _ in range(repeats):
-        for threads in thread_counts:
-            numba.set_num_threads(threads)
-            t0 = time.perf_counter()
-            for _ in range(steps):
-                eng.advance(eng.timestep())
-            times[threads].append(time.perf_counter() - t0)
     n = len(eng.particles)
-    return n, {t: (n * steps / min(v), n * steps / float(np.median(v))) for t, v in times.items()}
+    return n, interleaved_step_rates(eng, thread_counts, steps, repeats, updates_per_step=n)
 
 
 def main() -> None:

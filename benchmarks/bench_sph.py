@@ -24,10 +24,10 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import time
 
 import numba
 import numpy as np
+from _timing import interleaved_step_rates
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "src"))
 
@@ -52,22 +52,8 @@ def box_engine(n: int) -> SPHEngine:
 
 
 def throughput(n: int, thread_counts: tuple[int, ...], steps: int, repeats: int = 9) -> dict[int, tuple[float, float]]:
-    """Particle-updates/s for each thread count: the best and the median of ``repeats`` timings of
-    ``steps`` steps, the thread counts interleaved so that they see the same machine (it is shared:
-    the best run is the least disturbed one)."""
-    eng = box_engine(n)
-    for threads in thread_counts:  # compile, first neighbour tables
-        numba.set_num_threads(threads)
-        eng.advance(eng.timestep())
-    times: dict[int, list[float]] = {t: [] for t in thread_counts}
-    for _ in range(repeats):
-        for threads in thread_counts:
-            numba.set_num_threads(threads)
-            t0 = time.perf_counter()
-            for _ in range(steps):
-                eng.advance(eng.timestep())
-            times[threads].append(time.perf_counter() - t0)
-    return {t: (n**3 * steps / min(v), n**3 * steps / float(np.median(v))) for t, v in times.items()}
+    """Particle-updates/s (best, median) of the n^3 box for each thread count."""
+    return interleaved_step_rates(box_engine(n), thread_counts, steps, repeats, updates_per_step=n**3)
 
 
 def main(sizes: list[int]) -> None:
