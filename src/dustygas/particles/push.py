@@ -266,6 +266,22 @@ def _copy_rows(src, dst, nvar, ncell, c0, c1) -> None:
             dst[v, c] = src[v, c]
 
 
+@njit(inline="always")
+def _filter_all_axes(field, nvar, work, cells, y_cells, ncell, ngroup) -> None:
+    """Apply the grid-scale filter along every axis with more than one cell to the first ``nvar``
+    rows of ``field`` ``(nvar, ncell)`` in place (``work`` holds each pass). Inlined into
+    :func:`particle_stage`, so its loops are parallel regions of that kernel."""
+    for a in range(3):
+        n = cells.nx if a == 0 else (cells.ny if a == 1 else cells.nz)
+        if n > 1:
+            nlines = ncell // n
+            nl = min(nlines, 64)
+            for g in prange(nl):
+                filter_lines(field, work, nvar, a, cells, y_cells, g * nlines // nl, (g + 1) * nlines // nl)
+            for g in prange(ngroup):
+                _copy_rows(work, field, nvar, ncell, g * ncell // ngroup, (g + 1) * ncell // ngroup)
+
+
 @njit(cache=True, parallel=True, error_model="numpy")
 def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, forces, method, feedback, gas_az, dt,
                    shift_a, shift_b, fields, ext, starts, bounds, keys, axis, order_work, vmax, smooth, work):
@@ -319,15 +335,7 @@ def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, for
             if cells.jump != 0.0:  # full v_y in a shearing box: filter the periodic v_y + q Omega x
                 for g in prange(nrow):
                     _add_shear(fields, cells, 1.0, g * rows // nrow, (g + 1) * rows // nrow)
-            for a in range(3):
-                n = cells.nx if a == 0 else (cells.ny if a == 1 else cells.nz)
-                if n > 1:
-                    nlines = ncell // n
-                    nl = min(nlines, 64)
-                    for g in prange(nl):
-                        filter_lines(fields, work, 4, a, cells, y_cells, g * nlines // nl, (g + 1) * nlines // nl)
-                    for g in prange(ngroup):
-                        _copy_rows(work, fields, 4, ncell, g * ncell // ngroup, (g + 1) * ncell // ngroup)
+            _filter_all_axes(fields, 4, work, cells, y_cells, ncell, ngroup)
             if cells.jump != 0.0:
                 for g in prange(nrow):
                     _add_shear(fields, cells, -1.0, g * rows // nrow, (g + 1) * rows // nrow)
@@ -340,15 +348,7 @@ def particle_stage(stage, pos, vel, species, pid, mass, u, cells, order, sp, for
                 particle_chunk(stage, pos, vel, species, mass, fields, cells, order, sp, forces, method, feedback, dt,
                                shift_a, shift_b, ext, keys, axis, vmax, c, starts[bounds[c]], starts[bounds[c + 1]])
     if smooth and feedback:  # ... and deposit through the same kernel F*W
-        for a in range(3):
-            n = cells.nx if a == 0 else (cells.ny if a == 1 else cells.nz)
-            if n > 1:
-                nlines = ncell // n
-                nl = min(nlines, 64)
-                for g in prange(nl):
-                    filter_lines(ext, work, 3, a, cells, y_cells, g * nlines // nl, (g + 1) * nlines // nl)
-                for g in prange(ngroup):
-                    _copy_rows(work, ext, 3, ncell, g * ncell // ngroup, (g + 1) * ncell // ngroup)
+        _filter_all_axes(ext, 3, work, cells, y_cells, ncell, ngroup)
     if stage != CORRECT:
         return 0.0, 0.0, 0.0, False
     vx, vy, vz = _speeds(vmax)
