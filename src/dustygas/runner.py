@@ -170,9 +170,9 @@ class RunLoop:
         self.state.snapshot_index += 1
         self.state.last_snapshot_time = float(self.engine.t)
 
-    def _record_history(self) -> None:
+    def _record_history(self, diagnostics: dict[str, float]) -> None:
         row = {"time": float(self.engine.t), "cycle": float(self.engine.cycle)}
-        row.update({k: float(v) for k, v in self.engine.history().items()})
+        row.update({k: float(v) for k, v in diagnostics.items()})
         hist = self.state.history
         n = len(hist.get("time", []))
         for key, value in row.items():
@@ -233,9 +233,9 @@ class RunLoop:
         s.next_snapshot = t0 + run.dt_snapshot if run.dt_snapshot > 0 else math.inf
         s.next_history = t0 + run.dt_history if run.dt_history > 0 else t0
         s.next_checkpoint = t0 + run.dt_checkpoint if run.dt_checkpoint > 0 else math.inf
-        self._check_finite()
+        diagnostics = self._finite_diagnostics()
         self._write_snapshot()
-        self._record_history()
+        self._record_history(diagnostics)
         self._log_messages()
 
     def _log_messages(self) -> None:
@@ -244,13 +244,15 @@ class RunLoop:
             self.rundir.log(line)
             print(f"dustygas: {line}", file=sys.stderr, flush=True)
 
-    def _check_finite(self) -> None:
+    def _finite_diagnostics(self) -> dict[str, float]:
+        """``engine.history()``, once per history row; a non-finite value stops the run."""
         values = self.engine.history()
         bad = [k for k, v in values.items() if not np.isfinite(v)]
         if bad:
             raise SimulationError(
                 f"non-finite diagnostics ({', '.join(bad)}) at time={self.engine.t:.6g} cycle={self.engine.cycle}"
             )
+        return values
 
     def loop(self) -> RunResult:
         """Advance to ``tlim``; return how the run ended."""
@@ -286,8 +288,7 @@ class RunLoop:
                     work += eng.work_units
                     self._log_messages()
                     if run.dt_history <= 0 or eng.t >= s.next_history:
-                        self._check_finite()
-                        self._record_history()
+                        self._record_history(self._finite_diagnostics())
                         while run.dt_history > 0 and s.next_history <= eng.t:
                             s.next_history += run.dt_history
                     if eng.t >= s.next_snapshot:
