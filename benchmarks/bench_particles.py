@@ -14,10 +14,21 @@ warm-up) for Athena's other particle runs: linA with 4 particles per cell, linA 
 the 3D run "AB" (τ_s = 0.1, ε = 1, 32³, box 2 ηr, shear-periodic, 1 and 8 particles per
 cell).
 
+Side by side with Athena (``--athena PATH``): the path of an Athena 4.2 binary built outside the
+repository for its ``streaming2d_single`` problem (``benchmarks/_athena.py`` says how it is
+configured). Athena's linA (``ipert=1``, 64², one particle per cell, CTU at Courant 0.8, TSC,
+semi-implicit drag, t = 0 -> 6, its mode-amplitude output every 0.02) and dustygas's si-linA
+(each integrator of ``--integrators``, one thread, and two threads) run interleaved,
+``--rounds`` times; printed: wall time to t = 6, cycles, zone-cycles/s, growth rate and its
+error against linear theory (Athena's from its largest-perturbation output, ours from the
+Fourier amplitudes, both with the automatic window of ``dustygas analyze growth``), and the
+ratios of the median wall times.
+
 Usage::
 
     flock benchmarks/.lock python benchmarks/bench_particles.py            # everything
     python benchmarks/bench_particles.py --quick                                      # timed rows only
+    flock benchmarks/.lock python benchmarks/bench_particles.py --athena /path/to/athena --rounds 3
 """
 
 from __future__ import annotations
@@ -33,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numba  # noqa: E402
 
@@ -105,17 +117,70 @@ def time_steps(make, seconds: float, repeat: int, threads: int) -> tuple[float, 
     return max(rates), statistics.median(rates), eng.particles.n
 
 
-def full_lina(threads: int) -> dict:
+#: the gas schemes of si-linA compared with Athena: VL2 at its 2D limit's 0.4, CTU at Athena's 0.8
+SCHEMES = {"vl2": ["scheme.integrator=vl2", "scheme.cfl=0.4"], "ctu": ["scheme.integrator=ctu", "scheme.cfl=0.8"]}
+
+
+def full_lina(threads: int, sets: list[str] | None = None) -> dict:
     """linA 64² 1 ppc, t = 0 -> 6 through the run loop; wall, throughput and growth."""
     from dustygas import api
     from dustygas.analysis.growth import measure_growth
 
-    si_engine(["grid.nx=8", "grid.nz=8", "run.tlim=0.001"]).advance(1e-6)  # compile outside the timing
+    sets = list(sets or [])
+    si_engine(["grid.nx=8", "grid.nz=8", "run.tlim=0.001", *sets]).advance(1e-6)  # compile outside the timing
     with tempfile.TemporaryDirectory() as tmp:
-        res = api.run("si-linA", output=Path(tmp) / "linA", set=[f"run.threads={threads}", "run.checkpoint_wall=0"])
+        res = api.run("si-linA", output=Path(tmp) / "linA",
+                      set=[*sets, f"run.threads={threads}", "run.checkpoint_wall=0"])
         fit = measure_growth(Path(tmp) / "linA")
     return dict(cycles=res.cycles, wall=res.wall, zone_cycles=res.throughput,
-                particle_updates=res.throughput, growth=fit.growth_rate, spread=fit.spread)
+                particle_updates=res.throughput, growth=fit.growth_rate, spread=fit.spread, window=fit.window)
+
+
+def athena_lina(binary: Path, athinput: Path) -> dict:
+    """Athena's streaming2d_single linA: 64², 1 ppc, CTU at 0.8, TSC, semi-implicit, t = 0 -> 6."""
+    from _athena import run_athena, streaming_growth
+
+    overrides = ["time/tlim=6", "time/cour_no=0.8", "time/nlim=10000000", "job/maxout=1", "output1/dt=0.02",
+                 "domain1/Nx1=64", "domain1/Nx2=64", "particle/parnumcell=1", "particle/integrator=2",
+                 "particle/interp=2", "particle/tsmode=3", "problem/ipert=1", "problem/nwave=1",
+                 "problem/amp=1.0e-6"]
+    res = run_athena(binary, athinput, overrides)
+    (amp,) = [text for name, text in res["files"].items() if name.startswith("Streaming2d")]
+    fit = streaming_growth(amp)
+    return dict(cycles=res["cycles"], wall=res["wall"], zone_cycles=res["cycles"] * 64 * 64 / res["wall"],
+                growth=fit.growth_rate, spread=fit.spread, window=fit.window)
+
+
+def _line(name: str, r: dict) -> str:
+    return (f"{name:<22} {r['cycles']:>7} cycles  wall {r['wall']:7.1f} s  {r['zone_cycles']:.3g} zone-cycles/s  "
+            f"growth {r['growth']:.5f} ({100 * (r['growth'] / LINA_GROWTH - 1):+.2f} %, window "
+            f"{r['window'][0]:.2f}-{r['window'][1]:.2f}, fields within {100 * r['spread']:.2f} %)  load {load()}")
+
+
+def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], rounds: int, two_threads: bool) -> None:
+    """Athena and dustygas linA interleaved, ``rounds`` times; medians and ratios."""
+    from _athena import find_input
+
+    athinput = athinput or find_input(binary, "streaming2d_single", "particle")
+    print(f"# Athena {binary} with {athinput}")
+    runs: dict[str, list[dict]] = {}
+    threads = [1, 2] if two_threads and numba.config.NUMBA_NUM_THREADS >= 2 else [1]
+    for rnd in range(rounds):
+        jobs = [("athena", None, 1)] + [(name, SCHEMES[name], t) for name in integrators for t in threads]
+        if rnd % 2:  # alternate the order, so that a trend in the machine's load hits both codes alike
+            jobs.reverse()
+        for name, sets, t in jobs:
+            key = name if name == "athena" else f"dustygas {name} {t}T"
+            r = athena_lina(binary, athinput) if name == "athena" else full_lina(t, sets)
+            runs.setdefault(key, []).append(r)
+            print(_line(key, r), flush=True)
+    ath = statistics.median(r["wall"] for r in runs["athena"])
+    print(f"# medians over {rounds} round(s); Athena {ath:.1f} s")
+    for key, rs in runs.items():
+        if key == "athena":
+            continue
+        wall = statistics.median(r["wall"] for r in rs)
+        print(f"{key:<22} median wall {wall:7.1f} s  Athena / dustygas wall: {ath / wall:.2f}")
 
 
 def main() -> None:
@@ -123,10 +188,18 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="skip the two full linA runs")
     ap.add_argument("--seconds", type=float, default=3.0, help="length of one timing of the short rows")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--athena", type=Path, help="Athena 4.2 binary built for streaming2d_single: run it side by side")
+    ap.add_argument("--athinput", type=Path, help="its input file (default: tst/particle/ of its source tree)")
+    ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena")
+    ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
+    ap.add_argument("--one-thread", action="store_true", help="--athena: dustygas on one thread only")
     args = ap.parse_args()
     maxthreads = numba.config.NUMBA_NUM_THREADS
     print(f"# bench_particles  {time.strftime('%Y-%m-%d %H:%M')}  numba {numba.__version__}  "
           f"threads available {maxthreads}  load {load()}")
+    if args.athena is not None:
+        side_by_side(args.athena, args.athinput, args.integrators.split(","), args.rounds, not args.one_thread)
+        return
     if not args.quick:
         one = None
         for threads in (1, maxthreads):

@@ -23,7 +23,8 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError, UserError
-from .boundaries import fill_ghosts, make_boundaries
+from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, fill_ghosts, make_boundaries
+from .ctu import CTU_COURANT_LIMIT, ctu_stage, ctu_work
 from .diagnostics import domain_sums, max_signal_rate
 from .integrator import INTEGRATORS, advance_gas, integrator_tables
 from .mesh import Mesh
@@ -137,7 +138,8 @@ class GridEngine:
                 raise SetupError(f"{name} '{value}' unknown: choose one of {', '.join(table)}")
         if not cs > 0:
             raise SetupError(f"sound speed cs={cs}: must be positive")
-        limit = 1.0 / mesh.ndim  # unsplit: the Courant numbers of the axes add up (a diagonal wave)
+        # VL2 and Runge-Kutta: the Courant numbers of the axes add up (a diagonal wave); CTU: not
+        limit = CTU_COURANT_LIMIT if integrator == "ctu" else 1.0 / mesh.ndim
         if not 0 < cfl <= limit:
             raise SetupError(f"cfl={cfl}: {integrator} in {mesh.ndim}D is stable for 0 < cfl <= {limit:g}")
         for n, g, axis in zip(mesh.shape, mesh.ghosts, "xyz"):
@@ -177,6 +179,8 @@ class GridEngine:
         nz, ny, nx = mesh.array_shape
         self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
         self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
+        self._ctu = ctu_work(mesh.array_shape, mesh.ndim) if integrator == "ctu" else None
+        self._wrap = tuple(BOUNDARY_KINDS[k] in (PERIODIC, SHEAR_PERIODIC) for k in boundaries)
         self._no_ext = np.zeros((3, 1, 1, 1))
         #: time integrals [mass through the radial boundary, y-momentum from the source terms]
         self.budget = np.zeros(2)
@@ -254,6 +258,10 @@ class GridEngine:
 
     def advance(self, dt: float) -> None:
         """One step of the configured integrator (fused: one call into compiled code)."""
+        if self._ctu is not None:
+            self.advance_stage(0, dt)
+            self.advance_stage(1, dt)
+            return
         nstage = self._ints.shape[0]
         rate, bad = advance_gas(
             self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
@@ -286,11 +294,19 @@ class GridEngine:
         """
         nstage = self._ints.shape[0]
         use = ext is not None
-        rate, bad = advance_gas(
-            self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
-            self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-            ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
-        )
+        if self._ctu is not None:
+            w = self._ctu
+            rate, bad = ctu_stage(
+                self.states, stage, dt, self.t, self._layout, self._spacing, self._scheme, self._sources, self._bc,
+                self._xc, self._zc, self._oa_rate, ext if use else self._no_ext, use, self._wrap, w.ql, w.qr, w.fluxes,
+                self._bflux, self.budget, numba.get_num_threads(),
+            )
+        else:
+            rate, bad = advance_gas(
+                self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
+                self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
+                ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
+            )
         if stage == nstage - 1:
             self._check(rate, bad)
             self.t += dt

@@ -59,7 +59,7 @@ from .sweep import pencil_count, sweep_pencils
 __all__ = ["INTEGRATORS", "integrator_tables", "advance_gas"]
 
 #: name -> number of state slots it needs
-INTEGRATORS = {"vl2": 2, "rk2": 2, "rk3": 3}
+INTEGRATORS = {"vl2": 2, "rk2": 2, "rk3": 3, "ctu": 2}
 
 KEEP = -1  # reconstruction column: use the scheme's reconstruction
 
@@ -80,6 +80,9 @@ def integrator_tables(name: str) -> tuple[np.ndarray, np.ndarray]:
     """
     if name == "vl2":
         ints = [(0, 1, 0, DONOR), (1, 0, 0, KEEP)]
+        reals = [(1.0, 0.0, 0.5, 0.0, 0.0), (1.0, 0.0, 1.0, 0.5, 1.0)]
+    elif name == "ctu":  # predictor to U^{n+1/2} (slot 1), then the update (dustygas.grid.ctu)
+        ints = [(0, 1, 0, KEEP), (1, 0, 0, KEEP)]
         reals = [(1.0, 0.0, 0.5, 0.0, 0.0), (1.0, 0.0, 1.0, 0.5, 1.0)]
     elif name == "rk2":
         ints = [(0, 1, 0, KEEP), (1, 0, 0, KEEP)]

@@ -85,7 +85,7 @@ class ParticleGridEngine:
     Parameters
     ----------
     gas
-        The gas engine holding its initial state; its integrator must be ``vl2``.
+        The gas engine holding its initial state; its integrator must be ``vl2`` or ``ctu``.
     particles
         The particles (positions inside the box; velocities in the gas's frame).
     t_stop
@@ -143,8 +143,8 @@ class ParticleGridEngine:
         rho_ref: float = 1.0,
         smooth: bool = True,
     ):
-        if gas.scheme_names["integrator"] != "vl2":
-            raise SetupError(f"particles need the vl2 gas integrator, not {gas.scheme_names['integrator']}")
+        if gas.scheme_names["integrator"] not in ("vl2", "ctu"):  # predictor + corrector with U^{n+1/2}
+            raise SetupError(f"particles need the vl2 or ctu gas integrator, not {gas.scheme_names['integrator']}")
         if kernel not in KERNELS:
             raise SetupError(f"particle kernel '{kernel}' unknown: choose one of {', '.join(KERNELS)}")
         if integrator not in DRAG_INTEGRATORS:

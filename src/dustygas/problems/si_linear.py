@@ -215,8 +215,8 @@ class SILinear(Problem):
     }
 
     def validate(self, cfg) -> None:
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
+        if cfg.scheme.integrator not in ("vl2", "ctu"):
+            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2 or ctu")
         if cfg.problem.kz == 0:
             raise ConfigError("problem.kz = 0: the 2D box needs a vertical wavenumber")
 

@@ -1,0 +1,66 @@
+"""Run an Athena 4.2 (C version) build given by the user, side by side with dustygas.
+
+Nothing of Athena is shipped here: the benchmark scripts take the path of an ``athena`` binary
+built outside the repository and of the input file of its problem (by default looked up in the
+Athena source tree above the binary: ``tst/particle/athinput.<problem>``), and pass every
+parameter that matters on Athena's command line (``block/name=value``), so that the run is the
+one described in the script whatever the input file says.
+
+How to build the binaries (words, not a recipe): from the public Athena 4.2 C repository,
+``configure`` with ``--with-gas=hydro --with-eos=isothermal --enable-shearing-box
+--with-integrator=ctu --with-order=3p --with-flux=hllc`` and, for the particle runs, also
+``--with-particles=feedback --enable-fargo --with-problem=streaming2d_single``; for the gas-only
+rows ``--with-problem=hb3`` (2D x-z) or ``--with-problem=hgb`` (3D); then ``make all`` (recent
+gcc needs ``-fcommon`` in the compiler flags). One binary per problem.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+#: the columns of the mode-amplitude file of Athena's streaming2d problems: the largest |perturbation|
+#: of each field over the grid (gas density, dust density, then gas/dust velocities x, y, z)
+STREAMING_COLUMNS = ("drho_g", "drho_p", "ux", "wx", "uy", "wy", "uz", "wz")
+
+
+def find_input(binary: Path, problem: str, subdir: str) -> Path:
+    """``tst/<subdir>/athinput.<problem>`` of the Athena source tree above ``binary``."""
+    for parent in binary.resolve().parents:
+        for tree in (parent, *parent.glob("*/")):
+            candidate = tree / "tst" / subdir / f"athinput.{problem}"
+            if candidate.is_file():
+                return candidate
+    raise SystemExit(f"no athinput.{problem} found above {binary}: pass --athinput")
+
+
+def run_athena(binary: Path, athinput: Path, overrides: list[str], workdir: Path | None = None) -> dict:
+    """Run ``binary -i athinput overrides...`` in a scratch directory; wall time, cycles, output."""
+    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+        t0 = time.perf_counter()
+        proc = subprocess.run([str(binary), "-i", str(athinput), *overrides], cwd=tmp, capture_output=True,
+                              text=True, check=False)
+        wall = time.perf_counter() - t0
+        if proc.returncode != 0:
+            raise SystemExit(f"athena failed ({proc.returncode}): {proc.stderr[-500:] or proc.stdout[-500:]}")
+        out = proc.stdout
+        cycles = [int(c) for c in re.findall(r"^cycle=(\d+)", out, flags=re.M)]
+        files = {p.name: p.read_text() for p in Path(tmp).glob("*.dat")}
+    return {"wall": wall, "cycles": cycles[-1] if cycles else 0, "stdout": out, "files": files}
+
+
+def streaming_growth(text: str):
+    """Growth fit of the eight fields of an Athena streaming2d amplitude file (max |perturbation|
+    against time), with dustygas's automatic linear window
+    (:func:`dustygas.analysis.growth.measure_growth`)."""
+    from dustygas.analysis.growth import measure_growth
+
+    data = np.loadtxt(text.splitlines())
+    t = data[:, 0]
+    modes = {name: data[:, 1 + i].astype(np.complex128) for i, name in enumerate(STREAMING_COLUMNS)}
+    return measure_growth((t, modes))
