@@ -14,16 +14,31 @@ rows of the same reconstruction and solver (its default, Courant 0.8 in 2D, 0.4 
 needs Courant <= 0.5 in 2D and (in our Courant convention) <= 1/3 in 3D, so per unit of
 simulated time it takes 1.6x (2D) and 1.2x (3D, against 0.4) the cycles of CTU.
 
+CTU rows (``ctu/...``) run at Courant 0.8 in 2D and 3D (the twelve-solve 3D step is stable to
+1); Athena's CTU runs at 0.8 in 2D and 0.4 in 3D (its six-solve 3D step is stable to 0.5), so
+in 3D our CTU advances twice the simulated time per cycle: the "per unit time" column is the
+zone-cycle ratio times the ratio of the Courant numbers.
+
+Side by side with Athena (``--athena-hb3 PATH``, ``--athena-hgb PATH``: binaries built outside
+the repository for its ``hb3`` (2D x-z) and ``hgb`` (3D) problems, isothermal hydro, CTU, PPM
+with primitive limiting, HLLC; ``benchmarks/_athena.py``): each case of ``--cases`` is run by
+Athena (random perturbations, Omega = c_s = 1, unit box, no outputs, ``--athena-cycles``
+cycles, its own zone-cycles/wall-second of the main loop) between the timings of ours, and
+the ratio is printed in the same run.
+
 Usage::
 
     flock benchmarks/.lock python benchmarks/bench_grid.py            # everything
     python benchmarks/bench_grid.py --cases 2d64xz 3d32 --threads 1 --seconds 2
+    flock benchmarks/.lock python benchmarks/bench_grid.py --cases 2d64xz 2d128xz 3d32 3d64 --schemes ctu/ppm/hllc \
+        --athena-hb3 /path/athena-hb3 --athena-hgb /path/athena-hgb
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import re
 import statistics
 import sys
 import time
@@ -32,6 +47,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numba  # noqa: E402
 
@@ -60,14 +76,19 @@ CASES = {
 }
 
 SCHEMES = [("vl2", "plm", "hlle"), ("vl2", "plm", "hllc"), ("vl2", "ppm", "hlle"), ("vl2", "ppm", "hllc"),
-           ("rk3", "ppm-cs", "hllc")]
+           ("rk3", "ppm-cs", "hllc"), ("ctu", "plm", "hllc"), ("ctu", "ppm", "hllc")]
+
+#: Courant numbers: ours by integrator and dimension, Athena's CTU by dimension
+COURANT = {("ctu", 2): 0.8, ("ctu", 3): 0.8}
+ATHENA_CTU_COURANT = {2: 0.8, 3: 0.4}
 
 
 def anchor(size: str, integrator: str, reconstruction: str, riemann: str) -> tuple[float | None, str]:
     """Athena's figure for the same scheme (VL2+PPM -> CTU+PPM) and its label."""
-    if integrator != "vl2" or reconstruction not in ("plm", "ppm"):
+    if integrator not in ("vl2", "ctu") or reconstruction not in ("plm", "ppm"):
         return None, ""
-    for athena_int in (("vl", "ctu") if reconstruction == "plm" else ("ctu",)):
+    order = ("ctu",) if integrator == "ctu" else (("vl", "ctu") if reconstruction == "plm" else ("ctu",))
+    for athena_int in order:
         value = ATHENA.get((size, athena_int, reconstruction, riemann))
         if value is not None:
             return value, f"{athena_int.upper()}/{reconstruction.upper()}/{riemann.upper()}"
@@ -76,9 +97,9 @@ def anchor(size: str, integrator: str, reconstruction: str, riemann: str) -> tup
 
 def build(shape, integrator, reconstruction, riemann) -> GridEngine:
     mesh = Mesh(shape, (1.0, 1.0, 1.0))
+    cfl = COURANT.get((integrator, mesh.ndim), 0.4 if mesh.ndim < 3 else 0.3)
     eng = GridEngine(mesh, integrator=integrator, reconstruction=reconstruction, riemann=riemann,
-                     cfl=0.4 if mesh.ndim < 3 else 0.3, boundaries=("shear-periodic", "periodic", "periodic"),
-                     omega=1.0, q=1.5)
+                     cfl=cfl, boundaries=("shear-periodic", "periodic", "periodic"), omega=1.0, q=1.5)
     rng = np.random.default_rng(42)
     full = tuple(reversed(shape))
     x = mesh.centers(0)[None, None, :]
@@ -115,6 +136,28 @@ def measure(shape, scheme, threads: list[int], seconds: float, repeat: int) -> d
     return rates
 
 
+def athena_rate(binary: Path, shape: tuple[int, int, int], cycles: int) -> float:
+    """Zone-cycles per wall second of Athena's main loop (its own figure) for ``shape``."""
+    from _athena import find_input, run_athena
+
+    ndim = sum(n > 1 for n in shape)
+    problem, subdir = ("hb3", "2D-mhd") if ndim == 2 else ("hgb", "3D-mhd")
+    nx, ny, nz = shape
+    # Athena's 2D shearing sheet is x1-x2 with x2 vertical (ShBoxCoord = xz)
+    n1, n2, n3 = (nx, nz, 1) if ndim == 2 else (nx, ny, nz)
+    overrides = ["job/maxout=0", f"time/nlim={cycles}", "time/tlim=1e10",
+                 f"time/cour_no={ATHENA_CTU_COURANT[ndim]}", "problem/omega=1.0", "problem/iso_csound=1.0",
+                 "problem/amp=0.01", "problem/ipert=1",
+                 f"domain1/Nx1={n1}", "domain1/x1min=-0.5", "domain1/x1max=0.5",
+                 f"domain1/Nx2={n2}", "domain1/x2min=-0.5", "domain1/x2max=0.5",
+                 f"domain1/Nx3={n3}", "domain1/x3min=-0.5", "domain1/x3max=0.5"]
+    res = run_athena(binary, find_input(binary, problem, subdir), overrides)
+    m = re.search(r"zone-cycles/wall-second = ([0-9.eE+-]+)", res["stdout"])
+    if not m:
+        raise SystemExit(f"no zone-cycles/wall-second in Athena's output: {res['stdout'][-300:]}")
+    return float(m.group(1))
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
@@ -123,6 +166,9 @@ def main(argv=None) -> int:
     ap.add_argument("--threads", default="1,2", help="comma-separated thread counts")
     ap.add_argument("--seconds", type=float, default=2.0, help="timed seconds per measurement")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--athena-hb3", type=Path, help="Athena binary for hb3 (2D x-z): run it side by side")
+    ap.add_argument("--athena-hgb", type=Path, help="Athena binary for hgb (3D): run it side by side")
+    ap.add_argument("--athena-cycles", type=int, default=0, help="cycles per Athena run (default: ~10 s of work)")
     args = ap.parse_args(argv)
     threads = [int(t) for t in args.threads.split(",")]
     load = os.getloadavg()
@@ -132,16 +178,28 @@ def main(argv=None) -> int:
     header = f"{'case':9} {'scheme':18} {'thr':>3} {'best':>9} {'median':>9}  {'Athena':>8} {'ratio':>6} {'2T/1T':>6}"
     print(header)
     print("-" * len(header))
+    athena_same_run: dict[str, float] = {}
     for case in args.cases:
         shape, size = CASES[case]
         for text in args.schemes:
             scheme = tuple(text.split("/"))
             ref, label = anchor(size, *scheme)
+            ndim = sum(n > 1 for n in shape)
+            binary = args.athena_hb3 if ndim == 2 else args.athena_hgb
+            if binary is not None and (ndim == 3 or shape[1] == 1):  # Athena's 2D box is x-z
+                if case not in athena_same_run:
+                    cycles = args.athena_cycles or max(20, int(2e7 / np.prod(shape)))
+                    athena_same_run[case] = athena_rate(binary, shape, cycles)
+                ref = athena_same_run[case]
+                label = f"Athena CTU/PPM/HLLC (Courant {ATHENA_CTU_COURANT[ndim]}), this run"
             rates = measure(shape, scheme, threads, args.seconds, args.repeat)
             best1 = max(rates[1]) if 1 in rates else None
             for t in threads:
                 best = max(rates[t])
                 ratio = f"{best / ref:6.2f}" if ref and t == 1 else ""
+                if ref and t == 1 and scheme[0] == "ctu":  # per unit of simulated time
+                    ours = COURANT.get((scheme[0], ndim), 0.4)
+                    ratio += f" ({best * ours / (ref * ATHENA_CTU_COURANT[ndim]):.2f}/time)"
                 speedup = f"{best / best1:6.2f}" if best1 and t > 1 else ""
                 ath = f"{ref:8.2g}" if ref and t == 1 else ""
                 print(f"{case:9} {text:18} {t:3d} {best:9.3g} {statistics.median(rates[t]):9.3g}  {ath:>8} {ratio:>6} "

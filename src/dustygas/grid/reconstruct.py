@@ -55,7 +55,7 @@ MINMOD, VANLEER, MC = 0, 1, 2
 LIMITERS = {"minmod": MINMOD, "vanleer": VANLEER, "mc": MC}
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def limited_slope(dl: float, dr: float, limiter: int) -> float:
     """Limited slope (per cell) from the one-sided differences ``dl``, ``dr``."""
     p = dl * dr
@@ -72,7 +72,7 @@ def limited_slope(dl: float, dr: float, limiter: int) -> float:
     return s if dl > 0.0 else -s
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def cw84_slope(wm: float, w0: float, wp: float) -> float:
     """CW84 eqs. 1.7-1.8: centred slope limited to twice the one-sided differences."""
     dl = w0 - wm
@@ -84,7 +84,7 @@ def cw84_slope(wm: float, w0: float, wp: float) -> float:
     return s if dc > 0.0 else -s
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def cw84_monotone(a: float, al: float, ar: float) -> tuple[float, float]:
     """CW84 eq. 1.10: edge values ``(al, ar)`` of a parabola without new extrema in its cell."""
     if (ar - a) * (a - al) <= 0.0:
@@ -101,7 +101,7 @@ def cw84_monotone(a: float, al: float, ar: float) -> tuple[float, float]:
 CS08_C = 1.25  # CS08's bound on the limited curvature relative to its neighbours
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _same_sign_min(d, d1, d2, d3) -> float:
     """``sign(d) min(|d|, C|d1|, C|d2|, C|d3|)`` if all four share a sign, else 0."""
     if d > 0.0 and d1 > 0.0 and d2 > 0.0 and d3 > 0.0:
@@ -111,7 +111,7 @@ def _same_sign_min(d, d1, d2, d3) -> float:
     return 0.0
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def cs08_face(am: float, a0: float, ap: float, app: float) -> float:
     """CS08 interface value between cells 0 and p (neighbours m and pp), eqs. 13-15."""
     face = (7.0 * (a0 + ap) - (am + app)) / 12.0
@@ -123,7 +123,7 @@ def cs08_face(am: float, a0: float, ap: float, app: float) -> float:
     return face
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def cs08_parabola(amm: float, am: float, a0: float, ap: float, app: float, al: float, ar: float) -> tuple[float, float]:
     """CS08 edge values of cell 0's parabola from its interface values ``al``, ``ar``."""
     if (ar - a0) * (a0 - al) <= 0.0 or (a0 - am) * (ap - a0) <= 0.0:
@@ -141,7 +141,9 @@ def cs08_parabola(amm: float, am: float, a0: float, ap: float, app: float, al: f
 
 # The loops below index views that start at the first cell they need, with ``i + constant``:
 # numba then knows every index is non-negative and drops its negative-index wraparound
-# handling, which otherwise costs a factor of four in these loops.
+# handling, which otherwise costs a factor of four in these loops. The limiter functions above
+# are inlined by numba itself (``inline="always"``): as calls LLVM kept them out of line, which
+# made the PPM-CS loops about twice as slow (measured at 64 cells, same arithmetic, same bits).
 
 
 @njit(cache=True, error_model="numpy")
@@ -151,14 +153,29 @@ def _ppm_cs(w, lo, hi, wl, wr, face):
     fa = face[lo - 1:]
     for v in range(w.shape[0]):
         a = w[v, lo - 3:]
+        # the unlimited fourth-order faces (a loop the compiler vectorises), then the rare ones
+        # outside their neighbours limited: the same values as cs08_face everywhere
         for i in range(nface):
-            fa[i] = cs08_face(a[i], a[i + 1], a[i + 2], a[i + 3])
+            fa[i] = (7.0 * (a[i + 1] + a[i + 2]) - (a[i] + a[i + 3])) / 12.0
+        for i in range(nface):
+            if (fa[i] - a[i + 1]) * (a[i + 2] - fa[i]) < 0.0:
+                fa[i] = cs08_face(a[i], a[i + 1], a[i + 2], a[i + 3])
         right = wr[v, lo - 1:]
         left = wl[v, lo:]
+        # the overshoot rule of cs08_parabola as selects (vectorised), then its extremum branch
+        # where it applies (the same values as cs08_parabola everywhere)
         for i in range(ncell):
-            al, ar = cs08_parabola(a[i], a[i + 1], a[i + 2], a[i + 3], a[i + 4], fa[i], fa[i + 1])
+            a0 = a[i + 2]
+            al = fa[i]
+            ar = fa[i + 1]
+            ar = a0 - 2.0 * (al - a0) if abs(ar - a0) >= 2.0 * abs(al - a0) else ar
+            al = a0 - 2.0 * (ar - a0) if abs(al - a0) >= 2.0 * abs(ar - a0) else al
             right[i] = al
             left[i] = ar
+        for i in range(ncell):
+            a0 = a[i + 2]
+            if (fa[i + 1] - a0) * (a0 - fa[i]) <= 0.0 or (a0 - a[i + 1]) * (a[i + 3] - a0) <= 0.0:
+                right[i], left[i] = cs08_parabola(a[i], a[i + 1], a0, a[i + 3], a[i + 4], fa[i], fa[i + 1])
 
 
 @njit(cache=True, error_model="numpy")
