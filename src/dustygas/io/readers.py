@@ -1,9 +1,11 @@
 """Read run directories as xarray Datasets: ``dustygas.open_run(RUN)``.
 
->>> run = open_run("runs/si-linA")                       # doctest: +SKIP
->>> run.history["mode_drho_p_re"].plot()                  # history: dimension ``time``
->>> snap = run.snapshot(-1)                               # grid: ``rho(z, y, x)`` with coordinates
->>> snap["rho"].sel(y=0, method="nearest").plot()
+>>> run = open_run("runs/si-linA")                      # doctest: +SKIP
+>>> run.history["mode_drho_p_re"].plot()                 # doctest: +SKIP
+>>> snap = run.snapshot(-1)                              # doctest: +SKIP
+>>> snap["rho"].sel(y=0, method="nearest").plot()        # doctest: +SKIP
+
+The history has dimension ``time``; a grid snapshot ``rho(z, y, x)`` with coordinates.
 
 Grid snapshots become Datasets with dimensions ``z, y, x`` and the cell-centre coordinates
 ``x, y, z``; the Lagrangian particles of a grid run sit along a ``particle`` dimension with
