@@ -32,7 +32,8 @@ from numba import njit
 from ..io.schema import layout_of, snapshot_quantity
 from .style import house_style, new_figure
 
-__all__ = ["MapImage", "grid_image", "sph_image", "snapshot_figure", "units_label", "axis_label"]
+__all__ = ["MapImage", "grid_image", "sph_image", "snapshot_figure", "image_figure", "units_label", "axis_label",
+           "times_length"]
 
 _AXES = "xyz"
 CMAP = "viridis"
@@ -59,8 +60,25 @@ def units_label(units: str) -> str:
     text = text.replace("code_time", r"\mathrm{code\ time}")
     import re
 
-    text = re.sub(r"\^\(?(-?[0-9/]+)\)?", r"^{\1}", text)
+    text = re.sub(r"\^\((-?[0-9/]+)\)", r"^{\1}", text)
+    text = re.sub(r"\^(-?[0-9]+)", r"^{\1}", text)
     return f"[${text}$]"
+
+
+def times_length(units: str) -> str:
+    """Units of the integral of a field of ``units`` along a line (``code_mass/code_length**3``
+    -> ``code_mass/code_length**2``)."""
+    import re
+
+    if units in ("dimensionless", ""):
+        return "code_length"
+    m = re.fullmatch(r"(.*)/code_length\*\*(\d+)", units)
+    if m and "/" not in m.group(1):
+        n = int(m.group(2)) - 1
+        return f"{m.group(1)}/code_length" + (f"**{n}" if n > 1 else "")
+    if units == "code_length":
+        return "code_length**2"
+    return f"({units})*code_length"
 
 
 def axis_label(name: str, units: str) -> str:
@@ -104,7 +122,7 @@ def grid_image(arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], field
     elif kind == "projection":
         length = float(attrs.get(f"l{_AXES[a_norm]}", 1.0))
         img = values.sum(axis=arr_axis) * (length / values.shape[arr_axis])
-        units = f"({units})*code_length" if units not in ("dimensionless", "") else "code_length"
+        units = times_length(units)
         title = f"integrated along {_AXES[a_norm]}"
     else:
         raise ValueError(f"kind {kind!r}: choose slice or projection")
@@ -211,7 +229,7 @@ def sph_image(arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], field:
         img = np.zeros((ny, npix))
         _project(np.ascontiguousarray(pos), np.ascontiguousarray(mass / rho * values), np.ascontiguousarray(h),
                  table, radius, norm, x0, x1, y0, y1, npix, ny, plane[0], plane[1], img)
-        units = f"({units})*code_length" if units not in ("dimensionless", "") else "code_length"
+        units = times_length(units)
         title = f"integrated along {_AXES[a_norm]}"
     else:
         raise ValueError(f"kind {kind!r}: choose slice or projection")

@@ -1,8 +1,9 @@
 """``dustygas plot RUN``: the history curves and snapshot images of a run of any engine, and movies.
 
 * :func:`history_figure` -- every column of ``history.h5`` (or the chosen ones) against time,
-  one panel each, labelled with its units; a column spanning more than three decades with one
-  sign is drawn on a logarithmic axis (growing modes, decaying errors).
+  one panel each, labelled with its units; the real and imaginary parts of a mode amplitude
+  (``X_re``, ``X_im``) are drawn as one panel ``|X|``; a column spanning more than three decades
+  with one sign is drawn on a logarithmic axis (growing modes, decaying errors).
 * :func:`plot_snapshot` -- one snapshot, through :func:`dustygas.plot.maps.snapshot_figure`.
 * :func:`write_movie` -- one frame per snapshot with fixed colour limits (the range over all
   frames), written with matplotlib's animation writers: ``.mp4`` through ffmpeg, ``.gif``
@@ -38,6 +39,9 @@ def history_figure(run: str | Path, columns: Sequence[str] | None = None) -> Any
     """Figure of the history columns of ``run`` (all but ``time`` and ``cycle`` by default)."""
     cols, attrs = _run(run).read_history()
     time = cols["time"]
+    if not columns:  # complex amplitudes X_re, X_im are drawn as |X| (one panel, log axis)
+        for key in [k for k in cols if k.endswith("_re") and k[:-3] + "_im" in cols]:
+            cols[f"|{key[:-3]}|"] = np.hypot(cols.pop(key), cols.pop(key[:-3] + "_im"))
     names = list(columns) if columns else [k for k in cols if k not in ("time", "cycle")]
     unknown = [n for n in names if n not in cols]
     if unknown:
@@ -57,7 +61,8 @@ def history_figure(run: str | Path, columns: Sequence[str] | None = None) -> Any
                 ratio = np.abs(finite).max() / max(np.abs(finite).min(), 1e-300)
                 if ratio > 1e3:
                     ax.set_yscale("log" if np.all(finite > 0) else "symlog")
-            ax.set_ylabel(axis_label(name, history_quantity(name).units), fontsize=8)
+            ax.set_ylabel(axis_label(name, history_quantity(name.strip("|") + "_re" if name.startswith("|")
+                                                           else name).units), fontsize=8)
             ax.tick_params(labelsize=7)
         for ax in axes.flat[len(names):]:
             ax.set_visible(False)
