@@ -33,21 +33,15 @@ def _make(tmp_path_factory, spec):
     return path
 
 
-@pytest.fixture(scope="session")
-def grid_run(tmp_path_factory):
-    return _make(tmp_path_factory, GRID)
+def _session_run(spec):
+    @pytest.fixture(scope="session")
+    def fixture(tmp_path_factory):
+        return _make(tmp_path_factory, spec)
+
+    return fixture
 
 
-@pytest.fixture(scope="session")
-def particle_run(tmp_path_factory):
-    return _make(tmp_path_factory, PARTICLES)
-
-
-@pytest.fixture(scope="session")
-def sph_run(tmp_path_factory):
-    return _make(tmp_path_factory, SPH)
-
-
-@pytest.fixture(scope="session")
-def sph2d_run(tmp_path_factory):
-    return _make(tmp_path_factory, SPH2D)
+grid_run = _session_run(GRID)
+particle_run = _session_run(PARTICLES)
+sph_run = _session_run(SPH)
+sph2d_run = _session_run(SPH2D)

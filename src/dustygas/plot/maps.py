@@ -11,8 +11,7 @@ SPH runs
     :math:`A(\\mathbf x) = \\sum_b (m_b/\\rho_b) A_b W(|\\mathbf x-\\mathbf x_b|, h_b)` on the pixels
     of the plane of a 2D run or a cross-section of a 3D run (:func:`dustygas.sph.render.render_plane`);
     a 3D *projection* integrates it along the line of sight with the column-integrated kernel
-    :math:`\\int W\\,dz = (C_3/h^2)\\,F(R/h)`, :math:`F(R) = \\int f(\\sqrt{R^2+s^2})\\,ds`
-    (tabulated once per kernel). 1D runs are drawn particle by particle.
+    (:func:`dustygas.sph.render.render_column`). 1D runs are drawn particle by particle.
 
 Every function returns a :class:`matplotlib.figure.Figure` (Agg, no pyplot) whose first axes
 holds the image, with the axes and the colour bar labelled with the units of
@@ -22,12 +21,10 @@ holds the image, with the axes and the colour bar labelled with the units of
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
-from numba import njit
 
 from ..io.schema import layout_of, snapshot_quantity
 from .style import house_style, new_figure
@@ -139,47 +136,6 @@ def grid_image(arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], field
 # ---------------------------------------------------------------------------------------- SPH
 
 
-def _column_table(kernel: str, n: int = 512) -> tuple[np.ndarray, float, float]:
-    """``F(R) = ∫ f(sqrt(R² + s²)) ds`` of the 3D kernel on ``n`` points of ``[0, radius]``, and ``C_3``."""
-    from ..sph.kernels import get_kernel, kernel_shape
-
-    k = get_kernel(kernel, 3)
-    R = np.linspace(0.0, k.radius, n)
-    s = np.linspace(0.0, k.radius, 2001)
-    table = np.empty(n)
-    for i, r in enumerate(R):
-        q = np.sqrt(r * r + s * s)
-        f = np.array([kernel_shape(k.shape, float(v))[0] for v in q])
-        table[i] = 2.0 * np.trapezoid(f, s)
-    return table, k.radius, k.norm
-
-
-@njit(cache=True)
-def _project(pos, weight, h, table, radius, norm, x0, x1, y0, y1, nx, ny, ax, ay, img):
-    dx = (x1 - x0) / nx
-    dy = (y1 - y0) / ny
-    nt = table.size - 1
-    for b in range(pos.shape[0]):
-        hb = h[b]
-        rs = radius * hb
-        xb = pos[b, ax]
-        yb = pos[b, ay]
-        i0 = max(int(math.floor((xb - rs - x0) / dx)), 0)
-        i1 = min(int(math.floor((xb + rs - x0) / dx)) + 1, nx)
-        j0 = max(int(math.floor((yb - rs - y0) / dy)), 0)
-        j1 = min(int(math.floor((yb + rs - y0) / dy)) + 1, ny)
-        c = weight[b] * norm / (hb * hb)
-        for i in range(i0, i1):
-            px = x0 + (i + 0.5) * dx - xb
-            for j in range(j0, j1):
-                py = y0 + (j + 0.5) * dy - yb
-                u = math.sqrt(px * px + py * py) / hb / radius * nt
-                if u < nt:
-                    k = int(u)
-                    w = u - k
-                    img[j, i] += c * ((1.0 - w) * table[k] + w * table[k + 1])
-
-
 def _sph_field(arrays: Mapping[str, np.ndarray], field: str) -> np.ndarray:
     if field in ("vx", "vy", "vz"):
         return np.asarray(arrays["vel"])[:, _AXES.index(field[1])]
@@ -194,7 +150,7 @@ def sph_image(arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], field:
               kind: str = "slice", axis: str = "z", at: float = 0.0, npix: int = 256,
               extent: tuple[float, float, float, float] | None = None) -> MapImage:
     """Kernel-smoothed image of an SPH field (2D plane; 3D slice at ``axis = at`` or projection)."""
-    from ..sph.render import render_plane
+    from ..sph.render import render_column, render_plane
 
     ndim = int(attrs["ndim"])
     if ndim == 1:
@@ -223,12 +179,7 @@ def sph_image(arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], field:
         if ndim == 3:
             title = f"{_AXES[a_norm]} = {at:.4g}"
     elif kind == "projection":
-        table, radius, norm = _column_table(kernel)
-        x0, x1, y0, y1 = (float(v) for v in extent)  # type: ignore[union-attr]
-        ny = max(1, int(round(npix * (y1 - y0) / (x1 - x0))))
-        img = np.zeros((ny, npix))
-        _project(np.ascontiguousarray(pos), np.ascontiguousarray(mass / rho * values), np.ascontiguousarray(h),
-                 table, radius, norm, x0, x1, y0, y1, npix, ny, plane[0], plane[1], img)
+        img = render_column(pos, mass, rho, h, values, kernel, extent, npix, axes=plane)  # type: ignore[arg-type]
         units = times_length(units)
         title = f"integrated along {_AXES[a_norm]}"
     else:
