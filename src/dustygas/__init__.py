@@ -8,7 +8,8 @@ The public API is :mod:`dustygas.api`, re-exported here (``import dustygas as dg
 * look at runs: :func:`plot_history`, :func:`plot_snapshot`, :func:`movie`;
 * analyses: :func:`measure_growth`, :func:`growth_theory`, the linear theory
   :mod:`dustygas.linear` and the formulas :mod:`dustygas.physics`;
-* thesis figures: :func:`figure_names`, :func:`reproduce`.
+* thesis figures: :func:`figure_names`, :func:`reproduce_figures` (not to be confused with the
+  package :mod:`dustygas.reproduce` of figure functions).
 """
 
 from ._version import __version__
@@ -24,11 +25,11 @@ from .api import (
     plot_snapshot,
     problem_names,
     problem_parameters,
-    reproduce,
+    reproduce_figures,
     restart,
     run,
 )
 
 __all__ = ["__version__", "run", "restart", "problem_names", "get_problem", "problem_parameters", "open_run",
            "export", "plot_history", "plot_snapshot", "movie", "measure_growth", "growth_theory",
-           "figure_names", "reproduce"]
+           "figure_names", "reproduce_figures"]

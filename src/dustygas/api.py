@@ -8,7 +8,7 @@ export for other tools      :func:`export` (Athena++ athdf + XDMF, yt particles,
 look at a run               :func:`plot_history`, :func:`plot_snapshot`, :func:`movie`
 analyses                    :func:`measure_growth`, :func:`growth_theory`; the linear theory in
                             :mod:`dustygas.linear`; the formulas in :mod:`dustygas.physics`
-thesis figures              :func:`figure_names`, :func:`reproduce` (PNG, data, checks, index.html)
+thesis figures              :func:`figure_names`, :func:`reproduce_figures` (PNG, data, checks, index.html)
 ==========================  =========================================================================
 
 Every function here has a complete type signature (checked by mypy in the test suite), and the
@@ -48,7 +48,7 @@ from .runner import RunResult, run_engine
 __all__ = [
     "run", "restart", "get_problem", "problem_names", "problem_parameters",
     "open_run", "export", "plot_history", "plot_snapshot", "movie",
-    "measure_growth", "growth_theory", "figure_names", "reproduce",
+    "measure_growth", "growth_theory", "figure_names", "reproduce_figures",
 ]
 
 
@@ -231,7 +231,7 @@ def figure_names() -> list[str]:
     return _names()
 
 
-def reproduce(figures: Iterable[str] | None = None, output: str | Path = "figures",
+def reproduce_figures(figures: Iterable[str] | None = None, output: str | Path = "figures",
               quick: bool = True) -> list["FigureRecord"]:
     """Make ``figures`` (default: all) into ``output`` with their checks and ``output/index.html``."""
     from .reproduce.gallery import make_figures

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dustygas import reproduce as registry
+import dustygas.reproduce as registry
 from dustygas.plot import Column, new_figure, save_figure
 from dustygas.reproduce import FigureSpec, figure_names, get_figure
 from dustygas.reproduce.captions import THESIS_CAPTIONS
