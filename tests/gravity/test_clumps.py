@@ -94,3 +94,40 @@ def test_hop_joins_cells_to_their_peak_across_the_sheared_face():
 def test_bad_input_is_one_line():
     with pytest.raises(UserError, match="must be positive"):
         find_clumps(np.zeros((3, 2)), np.zeros((3, 2)), np.ones(2), box=BOX, cells=CELLS, G=0.0)
+
+
+# ---------------------------------------------------------------------------- the command line
+def test_analyze_clumps_on_a_synthetic_run(planted, tmp_path, capsys):
+    import json
+
+    from dustygas.analysis.synthetic import write_snapshot_run
+    from dustygas.cli import main
+
+    run = write_snapshot_run(tmp_path / "run", planted, cells=CELLS, G=G, time=12.5)
+    assert main(["analyze", "clumps", str(run), "--json", "--bootstrap", "20"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    (row,) = out["snapshots"]
+    assert row["clumps"] == len(MASSES) and row["time"] == 12.5
+    assert abs(row["mass_in_clumps"] / MASSES.sum() - 1) < 0.01
+    cat = ClumpCatalogue.read(run / "clumps" / "clumps_00000.h5")
+    assert np.allclose(np.sort(cat.mass), np.sort(row["masses"]))
+    assert out["mass_function"]["preferred"] in ("power-law", "truncated-power-law")
+    assert out["mass_function"]["power-law"]["n"] == len(MASSES)
+
+
+def test_analyze_clumps_bad_input_is_one_line(planted, tmp_path, capsys):
+    from dustygas.analysis.synthetic import write_snapshot_run
+    from dustygas.cli import main
+    from dustygas.io.rundir import RunDirectory
+
+    run = write_snapshot_run(tmp_path / "run", planted, cells=CELLS, G=G)
+    assert main(["analyze", "clumps", str(run), "--g-tilde", "0"]) == 2
+    err = capsys.readouterr().err
+    assert "--g-tilde 0.0: must be positive" in err and err.count("\n") == 1
+    gas_only = RunDirectory(tmp_path / "gas")
+    gas_only.create()
+    gas_only.write_snapshot(0, {"rho": np.ones((1, 1, 4))}, {"lx": 1.0, "ly": 1.0, "lz": 1.0, "omega": 1.0})
+    assert main(["analyze", "clumps", str(gas_only.path)]) == 2
+    err = capsys.readouterr().err
+    assert "needs a particle snapshot" in err and err.count("\n") == 1
+    assert not (gas_only.path / "clumps").exists()
