@@ -14,8 +14,9 @@ box that is shear-periodic in x, periodic in y (and optionally in z):
    are taken in the sheared image, the shear offset rounded to whole cells.
 3. **Hill spheres.** Groups are taken in order of decreasing mesh mass. From the peak, the
    particles within ``r_H(M)`` of the centre (:func:`~dustygas.physics.gravity.hill_radius`,
-   ``(GM/(2qΩ²))^(1/3)``) are collected through a k-d tree (scipy's ``cKDTree``, periodic in y
-   and z, queried at the radial images of the centre, ``(x ∓ L_x, y ± s)``), and ``M`` and the
+   ``(GM/(2qΩ²))^(1/3)``) are collected through a cell list on the same mesh (compiled; y and
+   z periodic, queried at the radial images of the centre, ``(x ∓ L_x, y ± s)``: 0.1 s to sort
+   1e6 particles where a k-d tree takes seconds to build), and ``M`` and the
    centre of mass are updated until ``r_H`` changes by less than 1e-4 of itself: the sphere
    whose mean density is the Hill density. A group whose peak lies inside an accepted clump's
    Hill sphere is a sub-peak of it and is dropped; a particle belongs to the first (most
@@ -194,26 +195,89 @@ def _monopole_potential(r, mass, G, softening):
     return phi
 
 
+@njit(cache=True)
+def _cell_list(pos, lower, dx, cells):
+    """Particles sorted by mesh cell: ``(starts, order)`` with cell ``c`` holding
+    ``order[starts[c]:starts[c + 1]]`` (a stable counting sort)."""
+    nx, ny, nz = cells
+    n = pos.shape[1]
+    key = np.empty(n, dtype=np.int64)
+    counts = np.zeros(nx * ny * nz + 1, dtype=np.int64)
+    for p in range(n):
+        i = min(max(int((pos[0, p] - lower[0]) / dx[0]), 0), nx - 1)
+        j = min(max(int((pos[1, p] - lower[1]) / dx[1]), 0), ny - 1)
+        k = min(max(int((pos[2, p] - lower[2]) / dx[2]), 0), nz - 1)
+        key[p] = (k * ny + j) * nx + i
+        counts[key[p] + 1] += 1
+    starts = np.cumsum(counts)
+    fill = starts[:-1].copy()
+    order = np.empty(n, dtype=np.int64)
+    for p in range(n):
+        order[fill[key[p]]] = p
+        fill[key[p]] += 1
+    return starts, order
+
+
+@njit(cache=True)
+def _axis_range(lo, hi, origin, d, n, periodic):
+    a = int(np.floor((lo - origin) / d))
+    b = int(np.floor((hi - origin) / d))
+    if periodic:
+        if b - a + 1 >= n:
+            return 0, n - 1
+        return a, b
+    return max(a, 0), min(b, n - 1)
+
+
+@njit(cache=True)
+def _ball(pos, starts, order, q, radius, lower, dx, cells, length, periodic_z):
+    """Indices of the particles within ``radius`` of ``q``: y periodic (nearest image), z periodic
+    if ``periodic_z``, x not (the caller queries the radial images)."""
+    nx, ny, nz = cells
+    i0, i1 = _axis_range(q[0] - radius, q[0] + radius, lower[0], dx[0], nx, False)
+    j0, j1 = _axis_range(q[1] - radius, q[1] + radius, lower[1], dx[1], ny, True)
+    k0, k1 = _axis_range(q[2] - radius, q[2] + radius, lower[2], dx[2], nz, periodic_z)
+    r2 = radius * radius
+    out = np.empty(0, dtype=np.int64)
+    for sweep in range(2):  # count, then fill
+        m = 0
+        for k in range(k0, k1 + 1):
+            kk = k % nz
+            for j in range(j0, j1 + 1):
+                jj = j % ny
+                for i in range(i0, i1 + 1):
+                    c = (kk * ny + jj) * nx + i
+                    for a in range(starts[c], starts[c + 1]):
+                        p = order[a]
+                        d0 = pos[0, p] - q[0]
+                        d1 = pos[1, p] - q[1]
+                        d1 -= length[1] * np.floor(d1 / length[1] + 0.5)
+                        d2 = pos[2, p] - q[2]
+                        if periodic_z:
+                            d2 -= length[2] * np.floor(d2 / length[2] + 0.5)
+                        if d0 * d0 + d1 * d1 + d2 * d2 < r2:
+                            if sweep == 1:
+                                out[m] = p
+                            m += 1
+        if sweep == 0:
+            out = np.empty(m, dtype=np.int64)
+    return out
+
+
 class _Box:
-    """Geometry of the search: box, shear and the k-d tree over the particles."""
+    """Geometry of the search: box, shear and the particles sorted by mesh cell."""
 
-    def __init__(self, pos, box, shear_offset, shear, periodic_z, q_omega_lx):
-        from scipy.spatial import cKDTree
-
+    def __init__(self, pos, box, cells, shear_offset, shear, periodic_z, q_omega_lx):
         self.lx, self.ly, self.lz = box
         self.s = float(shear_offset) if shear else 0.0
         self.shear = shear
         self.periodic_z = periodic_z
         self.jump = q_omega_lx if shear else 0.0
-        data = np.empty((pos.shape[1], 3))
-        data[:, 0] = pos[0]
-        data[:, 1] = np.mod(pos[1] + 0.5 * self.ly, self.ly)
-        data[:, 2] = np.mod(pos[2] + 0.5 * self.lz, self.lz) if periodic_z else pos[2]
-        # cKDTree needs coordinates inside [0, L) along periodic axes (mod can round up to L)
-        data[:, 1] = np.where(data[:, 1] >= self.ly, 0.0, data[:, 1])
-        if periodic_z:
-            data[:, 2] = np.where(data[:, 2] >= self.lz, 0.0, data[:, 2])
-        self.tree = cKDTree(data, boxsize=(0.0, self.ly, self.lz if periodic_z else 0.0))
+        self._cells = np.array(cells, dtype=np.int64)
+        self._lower = np.array([-0.5 * v for v in box])
+        self._dx = np.array([v / c for v, c in zip(box, cells)])
+        self._length = np.array(box, dtype=np.float64)
+        self._starts, self._order = _cell_list(pos, self._lower, self._dx, self._cells)
 
     def wrap(self, c):
         """A centre moved into the box (radially through the sheared images)."""
@@ -227,7 +291,8 @@ class _Box:
         return np.array([x, y, z])
 
     def separation(self, a, b):
-        """Offset ``a - b`` between two points of the box, nearest images (sheared radially)."""
+        """Offsets ``a - b`` (``(3,)`` or ``(3, n)``) between points of the box, nearest images
+        (sheared radially)."""
         d = np.asarray(a, dtype=np.float64) - np.asarray(b, dtype=np.float64)
         n = np.round(d[0] / self.lx)
         d[0] -= n * self.lx
@@ -244,12 +309,9 @@ class _Box:
         for image in (0, -1, 1):  # the particle's image x + image Lx, y - image s
             if image and abs(c[0] - image * self.lx) > 0.5 * self.lx + radius:
                 continue  # the sphere does not reach that radial face
-            q = np.array([c[0] - image * self.lx, c[1] + image * self.s + 0.5 * self.ly,
-                          c[2] + (0.5 * self.lz if self.periodic_z else 0.0)])
-            q[1] %= self.ly
-            if self.periodic_z:
-                q[2] %= self.lz
-            found = np.asarray(self.tree.query_ball_point(q, radius), dtype=np.int64)
+            q = np.array([c[0] - image * self.lx, c[1] + image * self.s, c[2]])
+            found = _ball(pos, self._starts, self._order, q, radius, self._lower, self._dx, self._cells,
+                          self._length, self.periodic_z)
             if found.size == 0:
                 continue
             d = np.empty((3, found.size))
@@ -266,10 +328,11 @@ class _Box:
             v.append(w)
         if not idx:
             return np.zeros(0, dtype=np.int64), np.zeros((3, 0)), np.zeros((3, 0))
+        several = len(idx) > 1
         idx = np.concatenate(idx)
         # a particle reached through two images of a large sphere is kept once (the nearest)
         rel, v = np.concatenate(rel, axis=1), np.concatenate(v, axis=1)
-        if np.unique(idx).size != idx.size:
+        if several and np.unique(idx).size != idx.size:
             r2 = (rel**2).sum(axis=0)
             order = np.lexsort((r2, idx))
             keep = order[np.r_[True, idx[order][1:] != idx[order][:-1]]]
@@ -383,12 +446,16 @@ def find_clumps(pos: np.ndarray, vel: np.ndarray, mass: np.ndarray, *, box: tupl
     dense = np.flatnonzero(root >= 0)
     peaks, group = np.unique(root[dense], return_inverse=True)
     group_mass = np.bincount(group, rho.ravel()[dense] * dx[0] * dx[1] * dx[2], minlength=peaks.size)
-    geo = _Box(pos, lengths, shear_offset, shear, bool(periodic_z), q * omega * lengths[0])
+    geo = _Box(pos, lengths, cells, shear_offset, shear, bool(periodic_z), q * omega * lengths[0])
     claimed = np.zeros(n, dtype=bool)
     found: list[dict] = []
 
     def inside_accepted(point) -> bool:
-        return any(np.linalg.norm(geo.separation(point, c["position"])) < c["hill_radius"] for c in found)
+        if not found:
+            return False
+        centres = np.array([c["position"] for c in found]).T
+        radii = np.array([c["hill_radius"] for c in found])
+        return bool((np.sqrt((geo.separation(point[:, None], centres) ** 2).sum(axis=0)) < radii).any())
 
     for g in np.argsort(-group_mass, kind="stable"):
         peak = int(peaks[g])
