@@ -11,7 +11,7 @@ import math
 
 from numba import njit, prange
 
-__all__ = ["apply_periodic_green", "apply_sheet_green", "vacuum_columns", "gradient"]
+__all__ = ["apply_periodic_green", "apply_sheet_green", "vacuum_columns", "multiply_phase", "gradient"]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -126,38 +126,97 @@ def vacuum_columns(rho, kx, ky, dz, four_pi_G, g, out) -> None:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def gradient(phi, gx, gy, gz, dx, dy, dz, order, out) -> None:
+def multiply_phase(src, phase, out) -> None:
+    """``out[k, j, i] = src[k, j, i] phase[j, i]`` for the rows ``j`` of ``phase``, 0 in the rows
+    of ``out`` beyond (the sheared-frame phase of the y modes, and the dropped Nyquist row)."""
+    layers, rows, nx = out.shape
+    my = phase.shape[0]
+    for k in prange(layers):
+        for j in range(rows):
+            if j < my:
+                for i in range(nx):
+                    out[k, j, i] = src[k, j, i] * phase[j, i]
+            else:
+                for i in range(nx):
+                    out[k, j, i] = 0.0
+
+
+@njit(inline="always")
+def _value(phi, x_lo, x_hi, k, j, i, nx, ox):
+    """``Φ`` at column ``i`` (may lie beyond the radial faces) of row ``j``, layer ``k``."""
+    g = x_lo.shape[2]
+    if g > 0:
+        if i < 0:
+            return x_lo[k, j, g + i]
+        if i >= nx:
+            return x_hi[k, j, i - nx]
+        return phi[k, j, i]
+    return phi[k, j, i + ox]
+
+
+@njit(inline="always")
+def _neighbour(j, d, n, offset, periodic, active, reach):
+    """Array index of the cell ``d`` away from cell ``j`` along an axis (wrapped if periodic,
+    else into the exterior layers); the cell itself along an inactive axis or beyond ``reach``."""
+    if not active or abs(d) > reach:
+        return j + offset
+    if periodic:
+        return (j + d) % n
+    return j + d + offset
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def gradient(phi, x_lo, x_hi, offsets, periodic, active, spacing, order, out) -> None:
     """``out = -∇Φ`` ``(3, nz, ny, nx)`` by centred differences of second or fourth order.
 
-    ``phi`` ``(nz + 2gz, ny + 2gy, nx + 2gx)`` holds the potential with ``g*`` ghost layers on
-    each side of the active axes (``g* = 0``: inactive, component 0). Second order:
-    ``(Φ_{i+1} - Φ_{i-1}) / 2Δ``; fourth: ``(8(Φ_{i+1} - Φ_{i-1}) - (Φ_{i+2} - Φ_{i-2})) / 12Δ``.
+    ``phi`` holds the potential of the cells, with ``offsets[a]`` exterior layers before them
+    along axis ``a`` (x, y, z) where the axis is not periodic (``periodic[a]``: wrap instead);
+    along x, when ``x_lo``/``x_hi`` ``(layers, rows, g)`` are not empty, they hold the ``g``
+    columns beyond the inner/outer face (the sheared images) and ``phi`` has none. Inactive
+    axes (``active[a]`` false) get 0. Second order: ``(Φ_{i+1} - Φ_{i-1}) / 2Δ``; fourth:
+    ``(8(Φ_{i+1} - Φ_{i-1}) - (Φ_{i+2} - Φ_{i-2})) / 12Δ``.
     """
     _, nz, ny, nx = out.shape
-    if order == 4:
-        c1, c2 = 2.0 / 3.0, -1.0 / 12.0
-    else:
-        c1, c2 = 0.5, 0.0
-    ax, ay, az = 1.0 / dx, 1.0 / dy, 1.0 / dz
+    four = order == 4
+    c1, c2 = (2.0 / 3.0, -1.0 / 12.0) if four else (0.5, 0.0)
+    reach = 2 if four else 1
+    ox, oy, oz = offsets
+    ax = (1.0 / spacing[0]) if active[0] else 0.0
+    ay = (1.0 / spacing[1]) if active[1] else 0.0
+    az = (1.0 / spacing[2]) if active[2] else 0.0
     for k in prange(nz):
-        kk = k + gz
+        kk = k + oz
+        # neighbour layers (wrapped, or exterior layers); an inactive axis reads its own layer
+        zm2 = _neighbour(k, -2, nz, oz, periodic[2], active[2], reach)
+        zm1 = _neighbour(k, -1, nz, oz, periodic[2], active[2], reach)
+        zp1 = _neighbour(k, 1, nz, oz, periodic[2], active[2], reach)
+        zp2 = _neighbour(k, 2, nz, oz, periodic[2], active[2], reach)
         for j in range(ny):
-            jj = j + gy
+            jj = j + oy
+            ym2 = _neighbour(j, -2, ny, oy, periodic[1], active[1], reach)
+            ym1 = _neighbour(j, -1, ny, oy, periodic[1], active[1], reach)
+            yp1 = _neighbour(j, 1, ny, oy, periodic[1], active[1], reach)
+            yp2 = _neighbour(j, 2, ny, oy, periodic[1], active[1], reach)
+            row = phi[kk, jj]
             for i in range(nx):
-                ii = i + gx
-                fx = fy = fz = 0.0
-                if gx > 0:
-                    fx = c1 * (phi[kk, jj, ii + 1] - phi[kk, jj, ii - 1])
-                    if c2 != 0.0:
-                        fx += c2 * (phi[kk, jj, ii + 2] - phi[kk, jj, ii - 2])
-                if gy > 0:
-                    fy = c1 * (phi[kk, jj + 1, ii] - phi[kk, jj - 1, ii])
-                    if c2 != 0.0:
-                        fy += c2 * (phi[kk, jj + 2, ii] - phi[kk, jj - 2, ii])
-                if gz > 0:
-                    fz = c1 * (phi[kk + 1, jj, ii] - phi[kk - 1, jj, ii])
-                    if c2 != 0.0:
-                        fz += c2 * (phi[kk + 2, jj, ii] - phi[kk - 2, jj, ii])
+                ii = i + ox
+                if not active[0]:
+                    fx = 0.0
+                elif reach <= i < nx - reach:
+                    fx = c1 * (row[ii + 1] - row[ii - 1])
+                    if four:
+                        fx += c2 * (row[ii + 2] - row[ii - 2])
+                else:
+                    fx = c1 * (_value(phi, x_lo, x_hi, kk, jj, i + 1, nx, ox)
+                               - _value(phi, x_lo, x_hi, kk, jj, i - 1, nx, ox))
+                    if four:
+                        fx += c2 * (_value(phi, x_lo, x_hi, kk, jj, i + 2, nx, ox)
+                                    - _value(phi, x_lo, x_hi, kk, jj, i - 2, nx, ox))
+                fy = c1 * (phi[kk, yp1, ii] - phi[kk, ym1, ii])
+                fz = c1 * (phi[zp1, jj, ii] - phi[zm1, jj, ii])
+                if four:
+                    fy += c2 * (phi[kk, yp2, ii] - phi[kk, ym2, ii])
+                    fz += c2 * (phi[zp2, jj, ii] - phi[zm2, jj, ii])
                 out[0, k, j, i] = -fx * ax
                 out[1, k, j, i] = -fy * ay
                 out[2, k, j, i] = -fz * az

@@ -15,7 +15,7 @@ from scipy import fft
 
 from ...errors import SetupError
 from .isolated import isolated_green_transform
-from .kernels import apply_periodic_green, apply_sheet_green, gradient, vacuum_columns
+from .kernels import apply_periodic_green, apply_sheet_green, gradient, multiply_phase, vacuum_columns
 
 __all__ = ["GRAVITY_BOUNDARIES", "PoissonSolver", "potential", "acceleration"]
 
@@ -107,6 +107,7 @@ class PoissonSolver:
         if self.isolated:
             self._doubled = tuple(2 * (n + g) for n, g in zip((nz, ny, nx), (gz, gy, gx)))
             self._green = isolated_green_transform(self._doubled, self.dx, self.four_pi_G / (4.0 * np.pi))
+            self._no_columns = (np.zeros((1, 1, 0)), np.zeros((1, 1, 0)))
             return
         if ny > 1:
             self._my = (ny + 1) // 2  # the Nyquist mode of an even ny is dropped
@@ -123,8 +124,8 @@ class PoissonSolver:
             self._kz = _reduced(kz) / dz
         else:
             self._kz = np.zeros(1)
-        # columns i = -gx .. nx + gx - 1 of the inverse transform (x ghosts)
-        self._cells = np.arange(-gx, nx + gx, dtype=np.float64)
+        self._unit_phase = np.ones((self._my, nx), dtype=np.complex128)
+        self._no_columns = (np.zeros((1, 1, 0)), np.zeros((1, 1, 0)))
 
     def _kx(self, shift: float) -> np.ndarray:
         """Radial wavenumbers ``(my, mx)`` of the sheared-frame modes at shear offset ``shift``."""
@@ -144,77 +145,89 @@ class PoissonSolver:
             raise ValueError(f"density has shape {rho.shape}, the solver's mesh {(nz, ny, nx)}")
         return rho
 
-    def potential_with_ghosts(self, rho: np.ndarray, shear_offset: float = 0.0) -> np.ndarray:
-        """Potential ``(nz + 2gz, ny + 2gy, nx + 2gx)`` with :attr:`ghosts` layers per active side.
+    def _solve(self, rho: np.ndarray, shear_offset: float) -> tuple:
+        """``(phi, x_lo, x_hi, offsets, periodic)`` as :func:`~.kernels.gradient` reads them.
 
-        Ghost layers hold the potential one (two) cells outside the box: periodic images, the
-        sheared radial images (``Φ(x ± Lx, y) = Φ(x, y ± s)``, exact: from the same Fourier
-        modes), or under vacuum the potential of the box's mass outside it.
+        ``phi`` ``(L, ny, nx)``: the potential at the cell centres, under vacuum z with ``gz``
+        exterior layers below and above (the potential of the box's mass there; ``L = nz +
+        2gz``); ``x_lo``, ``x_hi`` ``(L, ny, gx)``: the columns beyond the inner and outer radial
+        faces, the sheared images ``Φ(x ± L_x, y) = Φ(x, y ± s)`` (exact: a shift of the same
+        Fourier modes).
         """
         rho = self._check(rho)
-        if self.isolated:
-            return self._isolated(rho)
         (nx, ny, nz), (gx, gy, gz) = self.shape, self.ghosts
+        if self.isolated:
+            return self._isolated(rho), *self._no_columns, (gx, gy, gz), (False, False, False)
         w = self._workers()
         shift = float(shear_offset) if self.shear else 0.0
         kx = self._kx(shift)
         my = self._my
-        # ---- forward: y (real), sheared-frame phase, x
+        periodic_z = nz > 1 and not self.vacuum_z
+        phase = self._phase(shift)
+        # ---- forward: y (real), sheared-frame phase, then x (and a periodic z) in one call
         if ny > 1:
-            a = fft.rfft(rho, axis=1, workers=w)[:, :my, :]
-            if shift != 0.0:
-                theta = self._ky * shift * self.dx[0] / self.box[0]
-                a = a * np.exp(-1j * theta[:, None] * self._cells[None, gx:gx + nx])[None]
-            if nx > 1:
-                a = fft.fft(a, axis=2, workers=w, overwrite_x=True)
-            else:
-                a = np.ascontiguousarray(a)
+            a = np.empty((nz, my, nx), dtype=np.complex128)
+            multiply_phase(fft.rfft(rho, axis=1, workers=w), phase, a)
+            axes = tuple(ax for ax, on in ((0, periodic_z), (2, nx > 1)) if on)
+            if axes:
+                a = fft.fftn(a, axes=axes, workers=w, overwrite_x=True)
         elif nx > 1:
-            a = np.ascontiguousarray(fft.rfft(rho, axis=2, workers=w)[:, :, :kx.shape[1]])
+            a = fft.rfftn(rho, axes=(0, 2) if periodic_z else (2,), workers=w)[:, :, :kx.shape[1]]
+            a = np.ascontiguousarray(a)
         else:
-            a = rho.astype(np.complex128)
-        # ---- vertical and the Green's function
-        if nz > 1 and not self.vacuum_z:
-            a = fft.fft(a, axis=0, workers=w, overwrite_x=True)
+            a = fft.fft(rho, axis=0, workers=w) if periodic_z else rho.astype(np.complex128)
+        # ---- the Green's function (and the vertical solve under vacuum)
+        if periodic_z:
             apply_periodic_green(a, kx, self._ky, self._kz, self.four_pi_G)
-            a = fft.ifft(a, axis=0, workers=w, overwrite_x=True)
         elif nz == 1:
             apply_sheet_green(a, kx, self._ky, self.four_pi_G, self.thin)
         else:
             out = np.empty((nz + 2 * gz,) + a.shape[1:], dtype=np.complex128)
             vacuum_columns(a, kx, self._ky, self.dx[2], self.four_pi_G, gz, out)
             a = out
-        # ---- inverse: x (with its ghost columns), phase, y
+        # ---- inverse: x (and z), phase, y
         layers = a.shape[0]
         if ny > 1:
-            if nx > 1:
-                a = fft.ifft(a, axis=2, workers=w, overwrite_x=True)
-                if gx:
-                    a = np.concatenate((a[:, :, nx - gx:], a, a[:, :, :gx]), axis=2)
-                if shift != 0.0:
-                    a *= np.exp(1j * theta[:, None] * self._cells[None, :])[None]
-            full = np.zeros((layers, ny // 2 + 1, a.shape[2]), dtype=np.complex128)
-            full[:, :my] = a
+            axes = tuple(ax for ax, on in ((0, periodic_z), (2, nx > 1)) if on)
+            if axes:
+                a = fft.ifftn(a, axes=axes, workers=w, overwrite_x=True)
+            full = np.empty((layers, ny // 2 + 1, nx), dtype=np.complex128)
+            multiply_phase(a, np.conj(phase), full)
             phi = fft.irfft(full, n=ny, axis=1, workers=w)
         elif nx > 1:
+            if periodic_z:
+                a = fft.ifft(a, axis=0, workers=w, overwrite_x=True)
             full = np.zeros((layers, 1, nx // 2 + 1), dtype=np.complex128)
             full[:, :, :a.shape[2]] = a
             phi = fft.irfft(full, n=nx, axis=2, workers=w)
-            if gx:
-                phi = np.concatenate((phi[:, :, nx - gx:], phi, phi[:, :, :gx]), axis=2)
         else:
-            phi = a.real
-        # ---- periodic ghost layers in y and (unless vacuum) z
-        ext = np.empty((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx))
-        z0 = 0 if layers == nz + 2 * gz else gz
-        ext[z0:z0 + layers, gy:gy + ny] = phi
-        if gy:
-            ext[:, :gy] = ext[:, ny:ny + gy]
-            ext[:, ny + gy:] = ext[:, gy:2 * gy]
-        if gz and z0:
-            ext[:gz] = ext[nz:nz + gz]
-            ext[nz + gz:] = ext[gz:2 * gz]
-        return ext
+            phi = np.ascontiguousarray((fft.ifft(a, axis=0, workers=w) if periodic_z else a).real)
+        # ---- the sheared radial images of the first and last columns
+        if nx > 1 and gx:
+            x_lo, x_hi = phi[:, :, nx - gx:], phi[:, :, :gx]
+            if shift != 0.0:
+                x_lo, x_hi = (self._shift_y(c, sign * shift, w) for c, sign in ((x_lo, -1.0), (x_hi, 1.0)))
+            else:
+                x_lo, x_hi = np.ascontiguousarray(x_lo), np.ascontiguousarray(x_hi)
+        else:
+            x_lo, x_hi = self._no_columns
+        return phi, x_lo, x_hi, (0, 0, gz if self.vacuum_z and nz > 1 else 0), (True, True, periodic_z)
+
+    def _phase(self, shift: float) -> np.ndarray:
+        """``exp(-i k_y s i Δx / L_x)`` ``(my, nx)``: the sheared-frame phase of mode ``j``, column ``i``."""
+        nx = self.shape[0]
+        if shift == 0.0:
+            return self._unit_phase
+        theta = self._ky * shift * self.dx[0] / self.box[0]
+        return np.exp(-1j * theta[:, None] * np.arange(nx)[None, :])
+
+    def _shift_y(self, columns: np.ndarray, shift: float, workers: int) -> np.ndarray:
+        """``columns(y + shift)`` by the Fourier shift theorem (they hold no Nyquist mode)."""
+        ny = self.shape[1]
+        c = fft.rfft(columns, axis=1, workers=workers)
+        c[:, :self._my] *= np.exp(1j * self._ky * shift)[None, :, None]
+        c[:, self._my:] = 0.0
+        return fft.irfft(c, n=ny, axis=1, workers=workers)
 
     def _isolated(self, rho: np.ndarray) -> np.ndarray:
         (nx, ny, nz), (gx, gy, gz) = self.shape, self.ghosts
@@ -229,17 +242,19 @@ class PoissonSolver:
         """Potential ``(nz, ny, nx)`` of the density ``rho`` ``(nz, ny, nx)`` at shear offset
         ``shear_offset`` (:meth:`~dustygas.grid.GridGeometry.shear_offset`: the outer radial
         image at ``(x + Lx, y)`` holds the box's content at ``(x, y + s)``)."""
-        (gx, gy, gz), (nx, ny, nz) = self.ghosts, self.shape
-        return self.potential_with_ghosts(rho, shear_offset)[gz:gz + nz, gy:gy + ny, gx:gx + nx].copy()
+        (nx, ny, nz) = self.shape
+        phi, _, _, (ox, oy, oz), _ = self._solve(rho, shear_offset)
+        return phi[oz:oz + nz, oy:oy + ny, ox:ox + nx].copy()
 
     def acceleration(self, rho: np.ndarray, shear_offset: float = 0.0, out: np.ndarray | None = None) -> np.ndarray:
         """Gravitational acceleration ``-∇Φ`` ``(3, nz, ny, nx)`` at the cell centres (0 along
         inactive axes), by centred differences of :attr:`order` of the potential."""
         nx, ny, nz = self.shape
-        phi = self.potential_with_ghosts(rho, shear_offset)
+        phi, x_lo, x_hi, offsets, periodic = self._solve(rho, shear_offset)
         if out is None:
             out = np.empty((3, nz, ny, nx))
-        gradient(phi, *self.ghosts, *self.dx, self.order, out)
+        active = tuple(n > 1 for n in self.shape)
+        gradient(phi, x_lo, x_hi, offsets, periodic, active, self.dx, self.order, out)
         return out
 
 
