@@ -53,12 +53,13 @@ def apply_sheet_green(a, kx, ky, four_pi_G, thin) -> None:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def vacuum_columns(rho, kx, ky, dz, four_pi_G, g, out) -> None:
+def vacuum_columns(rho, kx, ky, dz, four_pi_G, start, out) -> None:
     """Vertical solve of every horizontal mode with vacuum above and below the box.
 
-    ``rho`` ``(nz, my, mx)`` complex, horizontally transformed density; ``out``
-    ``(nz + 2g, my, mx)`` receives the potential at the ``nz`` cell centres and at ``g`` cells
-    outside each vertical face (density zero there). With ``k = sqrt(k_x² + k_y²)`` the mode
+    ``rho`` ``(nz, my, mx)`` complex, horizontally transformed density of ``nz`` consecutive
+    layers, the only ones holding mass; ``out`` ``(n, my, mx)`` receives the potential at ``n``
+    consecutive layers, the first density layer being its layer ``start`` (``out`` may reach
+    beyond the box: the potential outside, where the density is zero). With ``k = sqrt(k_x² + k_y²)`` the mode
     obeys ``Φ'' - k² Φ = 4πG ρ`` with ``Φ -> 0`` (``k > 0``) or ``|Φ|`` growing no faster than
     ``|z|`` (``k = 0``) at infinity: ``Φ(z) = ∫ g_k(z - z') ρ(z') dz'`` with
     ``g_k = -2πG e^{-k|z|}/k`` and ``g_0 = 2πG |z|``. The density is taken constant across each
@@ -74,7 +75,8 @@ def vacuum_columns(rho, kx, ky, dz, four_pi_G, g, out) -> None:
     with FFTs of twice the length, without the doubled transform.
     """
     nz, my, mx = rho.shape
-    n = nz + 2 * g
+    n = out.shape[0]
+    g = start
     half = 0.5 * four_pi_G
     for j in prange(my):
         for i in range(mx):

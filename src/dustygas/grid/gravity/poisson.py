@@ -145,17 +145,21 @@ class PoissonSolver:
             raise ValueError(f"density has shape {rho.shape}, the solver's mesh {(nz, ny, nx)}")
         return rho
 
-    def _solve(self, rho: np.ndarray, shear_offset: float) -> tuple:
+    def _solve(self, rho: np.ndarray, shear_offset: float, layers: tuple[int, int] | None = None) -> tuple:
         """``(phi, x_lo, x_hi, offsets, periodic)`` as :func:`~.kernels.gradient` reads them.
 
         ``phi`` ``(L, ny, nx)``: the potential at the cell centres, under vacuum z with ``gz``
         exterior layers below and above (the potential of the box's mass there; ``L = nz +
         2gz``); ``x_lo``, ``x_hi`` ``(L, ny, gx)``: the columns beyond the inner and outer radial
         faces, the sheared images ``Φ(x ± L_x, y) = Φ(x, y ± s)`` (exact: a shift of the same
-        Fourier modes).
+        Fourier modes). Under vacuum z, ``layers = (k0, k1)`` restricts the work to the layers
+        ``k0 .. k1-1``, which must hold all the mass: ``phi`` then covers ``k0 - gz .. k1 + gz - 1``.
         """
         rho = self._check(rho)
         (nx, ny, nz), (gx, gy, gz) = self.shape, self.ghosts
+        if layers is not None:
+            rho = rho[layers[0]:layers[1]]
+            nz = rho.shape[0]
         if self.isolated:
             return self._isolated(rho), *self._no_columns, (gx, gy, gz), (False, False, False)
         w = self._workers()
@@ -246,15 +250,31 @@ class PoissonSolver:
         phi, _, _, (ox, oy, oz), _ = self._solve(rho, shear_offset)
         return phi[oz:oz + nz, oy:oy + ny, ox:ox + nx].copy()
 
-    def acceleration(self, rho: np.ndarray, shear_offset: float = 0.0, out: np.ndarray | None = None) -> np.ndarray:
+    def acceleration(self, rho: np.ndarray, shear_offset: float = 0.0, out: np.ndarray | None = None,
+                     occupied_only: bool = False) -> np.ndarray:
         """Gravitational acceleration ``-∇Φ`` ``(3, nz, ny, nx)`` at the cell centres (0 along
-        inactive axes), by centred differences of :attr:`order` of the potential."""
+        inactive axes), by centred differences of :attr:`order` of the potential.
+
+        ``occupied_only`` (vacuum z): compute it only in the layers between the lowest and the
+        highest that hold mass -- all a particle's assignment stencil reaches when ``rho`` is
+        the particles' own deposit -- and set the other layers to NaN. A settled dust layer
+        fills a fraction of the box's height, and the solve costs that fraction.
+        """
         nx, ny, nz = self.shape
-        phi, x_lo, x_hi, offsets, periodic = self._solve(rho, shear_offset)
         if out is None:
             out = np.empty((3, nz, ny, nx))
         active = tuple(n > 1 for n in self.shape)
-        gradient(phi, x_lo, x_hi, offsets, periodic, active, self.dx, self.order, out)
+        k0, k1 = 0, nz
+        if occupied_only and self.vacuum_z and nz > 1:
+            rho = self._check(rho)
+            filled = np.flatnonzero(np.any(rho != 0.0, axis=(1, 2)))
+            k0, k1 = (int(filled[0]), int(filled[-1]) + 1) if filled.size else (0, 0)
+            out[:, :k0] = np.nan
+            out[:, k1:] = np.nan
+            if k1 == k0:
+                return out
+        phi, x_lo, x_hi, offsets, periodic = self._solve(rho, shear_offset, (k0, k1) if (k0, k1) != (0, nz) else None)
+        gradient(phi, x_lo, x_hi, offsets, periodic, active, self.dx, self.order, out[:, k0:k1])
         return out
 
 
