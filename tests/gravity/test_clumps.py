@@ -131,3 +131,8 @@ def test_analyze_clumps_bad_input_is_one_line(planted, tmp_path, capsys):
     err = capsys.readouterr().err
     assert "needs a particle snapshot" in err and err.count("\n") == 1
     assert not (gas_only.path / "clumps").exists()
+
+
+def test_a_mesh_with_an_inactive_axis_needs_an_explicit_threshold():
+    with pytest.raises(UserError, match="give the threshold explicitly"):
+        find_clumps(np.zeros((3, 2)), np.zeros((3, 2)), np.ones(2), box=(1.0, 1.0, 1.0), cells=(8, 8, 1), G=1.0)
