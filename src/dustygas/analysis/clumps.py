@@ -438,7 +438,7 @@ def find_clumps(pos: np.ndarray, vel: np.ndarray, mass: np.ndarray, *, box: tupl
     if threshold is None and min(cells) == 1:
         raise UserError(f"clumps: the mesh {tuple(cells)} has an inactive axis, so its density is per unit length "
                         "of that axis: give the threshold explicitly (the Hill density is a volume density)")
-    (nx, ny, nz), lengths = cells, tuple(float(v) for v in box)
+    (nx, ny, _), lengths = cells, tuple(float(v) for v in box)
     dx = tuple(L / c for L, c in zip(lengths, cells))
     rho_t = float(hill_density(G, omega, q)) if threshold is None else float(threshold)
     soft = float(softening)

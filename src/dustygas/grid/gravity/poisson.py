@@ -102,7 +102,7 @@ class PoissonSolver:
 
     # ------------------------------------------------------------------ set-up
     def _tables(self) -> None:
-        (nx, ny, nz), (lx, ly, lz), (dx, _, dz) = self.shape, self.box, self.dx
+        (nx, ny, nz), ly, (dx, _, dz) = self.shape, self.box[1], self.dx
         gx, gy, gz = self.ghosts
         if self.isolated:
             self._doubled = tuple(2 * (n + g) for n, g in zip((nz, ny, nx), (gz, gy, gx)))
