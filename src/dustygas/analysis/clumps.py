@@ -33,8 +33,8 @@ box that is shear-periodic in x, periodic in y (and optionally in z):
 
 Resolution: a clump is seen only if some cell's TSC density exceeds the threshold. A compact clump
 of Hill radius ``r_H`` spreads its mass over up to 8 cells, so below ``r_H`` of about one cell it can
-stay below the Hill density (in a benchmark, 7 of 100 planted clumps with ``r_H`` = 0.9-1.9 cells
-were missed, none with ``r_H`` ≥ 1.4 cells): the finder resolves what the simulation's mesh resolves.
+stay below the Hill density (benchmarks: 7 of 100 planted clumps with ``r_H`` = 0.9-1.9 cells were
+missed; all 64 with ``r_H`` = 1.4-2.8 cells were found): the finder resolves what the mesh resolves.
 
 Velocities are those of the rotating frame (full ``v_y``); under orbital advection the stored
 ``v_y + qΩx`` is converted first. The radial image ``n`` of a particle has ``v_y - n qΩL_x``.
