@@ -56,7 +56,7 @@ from .orbital_advection import remap_columns
 from .reconstruct import DONOR
 from .sweep import pencil_count, sweep_pencils
 
-__all__ = ["INTEGRATORS", "integrator_tables", "advance_gas"]
+__all__ = ["INTEGRATORS", "courant_limit", "integrator_tables", "advance_gas"]
 
 #: name -> number of state slots it needs
 INTEGRATORS = {"vl2": 2, "rk2": 2, "rk3": 3}
@@ -66,6 +66,22 @@ KEEP = -1  # reconstruction column: use the scheme's reconstruction
 #: 2D x-y boxes with at least this many cells along y remap their radial ghosts and fluxes in
 #: parallel (measured: ~3.5 ns per remapped value, ~2 us per parallel region)
 PARALLEL_REMAP_NY = 100
+
+
+def courant_limit(ndim: int) -> float:
+    """Largest Courant number per axis the engine accepts in ``ndim`` dimensions: ``1/ndim``.
+
+    The step is ``Δt = C / max_d((|v_d| + c_s)/Δx_d)`` (thesis eqs. 2.12-2.13). In an unsplit
+    update the Courant numbers of the axes add up for a wave along the diagonal, and the engine
+    keeps their sum at most 1: ``C <= 1`` in 1D, 1/2 in 2D, 1/3 in 3D (Stone & Gardiner 2009
+    quote 0.5 for their VL+CT in 3D; with this VL2, a diagonal sound wave in 3D grows without
+    bound at ``C = 0.38``). The ``scheme.cfl`` parameter shows and checks the same bound
+    (:data:`dustygas.grid.params.SCHEME`).
+
+    >>> courant_limit(1), courant_limit(2), round(courant_limit(3), 6)
+    (1.0, 0.5, 0.333333)
+    """
+    return 1.0 / ndim
 
 
 def integrator_tables(name: str) -> tuple[np.ndarray, np.ndarray]:

@@ -15,7 +15,8 @@ the Youdin & Johansen 2007 linA parameters)::
         def build(self, cfg):
             ...
 
-    preset("soundwave-3d", SoundWave, "Oblique 3D sound wave.", grid={"nx": 32, "ny": 32, "nz": 32})
+    preset("soundwave-3d", SoundWave, "Oblique 3D sound wave.", grid={"nx": 32, "ny": 32, "nz": 32},
+           scheme={"cfl": 0.3})
 
 Every module in this package is imported the first time the registry is queried, so a new
 problem only needs a new file here.
