@@ -76,9 +76,10 @@ def test_settling_setup():
     """The column starts in hydrostatic balance: SPH density within 2 % of the Gaussian of scale height
     sqrt(1 - eps0) H for |z| < 2, eps = 0.099 everywhere, tau_s = 0.01 at the midplane; the initial
     dust-fraction rate is the terminal-velocity one, d eps/dt = -(1/rho) d(eps t_s dP/dz)/dz with the
-    hydrostatic dP/dz = -rho Omega^2 z (numbers.md §3 settling), to 3 % for 0.2 < |z| < 1."""
+    hydrostatic dP/dz = -rho Omega^2 z (thesis eq. 2.11b), to 3 % for 0.2 < |z| < 1."""
     from dustygas.problems import get_problem
-    from dustygas.problems.dust_settle import column_density, midplane_stokes_number
+    from dustygas.physics.exact import dusty_column_density
+    from dustygas.problems.dust_settle import midplane_stokes_number
     from dustygas.sph.dust.setup import dust_module
 
     prob = get_problem("dust-settle")
@@ -87,11 +88,11 @@ def test_settling_setup():
     eng.update_derivatives()
     z = eng.particles.pos[:, 0]
     inner = np.abs(z) < 2
-    assert np.max(np.abs(eng.rho[inner] / column_density(z[inner]) - 1)) < 0.02
+    assert np.max(np.abs(eng.rho[inner] / dusty_column_density(z[inner], dust_fraction=0.099) - 1)) < 0.02
     tau = midplane_stokes_number(cfg.dust.grain_size, cfg.dust.grain_density)
     assert tau == pytest.approx(0.01, rel=1e-4)
     assert np.all(dust_module(eng).dust_fractions(eng) == 0.099)
     # t_s = tau rho_mid / rho: the flux eps t_s dP/dz = -eps tau rho_mid z is linear in z
-    analytic = 0.099 * tau * column_density(0.0) / column_density(z)
+    analytic = 0.099 * tau * dusty_column_density(0.0, dust_fraction=0.099) / dusty_column_density(z, dust_fraction=0.099)
     near = (np.abs(z) > 0.2) & (np.abs(z) < 1.0)
     np.testing.assert_allclose(eng.particles.extra["ddust_dt"][near], analytic[near], rtol=0.03)
