@@ -1,9 +1,10 @@
 """Conservation (acceptance 3): momentum to round-off, energy to the integrator's order, angular
 momentum of a Keplerian ring; and results independent of the thread count."""
 
-import numba
 import numpy as np
 import pytest
+
+from _threads import assert_identical, results_at_threads
 
 from dustygas.sph import Box, EquationOfState, ParticleSet, SPHEngine, SPHOptions
 from dustygas.sph.lattice import cubic_lattice
@@ -85,17 +86,18 @@ def test_accretion_keeps_the_books():
     np.testing.assert_array_equal(eng.particles.vel, ref.particles.vel[kept])
 
 
-def test_results_independent_of_thread_count():
-    """Each particle gathers its own sums, so one and two threads give bit-identical states."""
-    states = []
-    for threads in (1, 2):
-        numba.set_num_threads(threads)
-        eng = _turbulent_box(n=8)
-        for _ in range(10):
-            eng.advance(eng.timestep())
-        states.append((eng.particles.pos.copy(), eng.particles.vel.copy(), eng.particles.u.copy()))
-    for a, b in zip(*states):
-        np.testing.assert_array_equal(a, b)
+def thread_case() -> dict:
+    """Ten steps of the shocking 8³ box (two parallel chunks of particles)."""
+    eng = _turbulent_box(n=8)
+    for _ in range(10):
+        eng.advance(eng.timestep())
+    return {"pos": eng.particles.pos, "vel": eng.particles.vel, "u": eng.particles.u}
+
+
+def test_results_independent_of_thread_count(tmp_path):
+    """Each particle gathers its own sums, so one and two threads (each in its own interpreter)
+    give bit-identical states."""
+    assert_identical(results_at_threads("sph.test_conservation:thread_case", tmp_path))
 
 
 @pytest.mark.slow
