@@ -1,10 +1,12 @@
-"""Steady drift (NSH, thesis eq. 4.8; issue 5 acceptance 1) and the dusty box (numbers.md §3).
+"""Steady drift (NSH, thesis eq. 4.8) and the dusty box (Laibe & Price 2011) of the particle-gas engine.
 
 NSH: uniform gas and particle lattices in the NSH equilibrium of
 :func:`dustygas.physics.nsh_velocities_multi`, ten orbits in a shear-periodic 2D x-z box with
 the full azimuthal velocity stored (particles crossing the radial boundary change v_y by
-q Ω L_x). Tolerance 1e-3 relative on every mean velocity (gas and each species, x and y);
-measured ≤ 4e-13: the equilibrium is an exact fixed point of the discrete scheme.
+q Ω L_x). The equilibrium is an exact fixed point of the discrete scheme, so what is left is
+round-off accumulated over 12,600 steps: measured at most 3.8e-13 relative on every mean
+velocity (gas and each species, x and y; 1.6e-15 with the exponential drag integrator);
+tolerance 2e-12.
 
 Dusty box: the relative velocity of uniform gas and dust decays as exp(-t/t_s) with the
 mixture stopping time; the scheme is second order in the step, and within Phantom's tolerance
@@ -46,7 +48,7 @@ def test_nsh_drift_holds_for_ten_orbits(taus, mu, extra):
     errors = [h["gas_vx"] / eq.gas_vx - 1, h["gas_vy"] / (eq.gas_vy + boost) - 1]
     for s in range(len(taus)):
         errors += [h[f"species_{s}_vx"] / eq.dust_vx[s] - 1, h[f"species_{s}_vy"] / (eq.dust_vy[s] + boost) - 1]
-    assert max(abs(e) for e in errors) < 1e-3, errors
+    assert max(abs(e) for e in errors) < 2e-12, errors
     # particles did cross the radial boundary (|V_x| t > L_x) for the fast drifters
     if max(taus) >= 1.0:
         assert abs(eq.dust_vx.min()) * 0.05 * cfg.run.tlim > cfg.grid.lx
