@@ -18,7 +18,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import Param, with_defaults
-from ..errors import ConfigError
 from ..grid import GridEngine, Mesh
 from ..grid.params import GRID
 from ..particles import ParticleGridEngine, ParticleStore
@@ -57,10 +56,6 @@ class DustyBoxGrid(Problem):
             "v_d0": Param(1.0, "initial dust velocity along x", "c_s"),
         },
     }
-
-    def validate(self, cfg) -> None:
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
 
     def build(self, cfg):
         p, g, s = cfg.problem, cfg.grid, cfg.scheme

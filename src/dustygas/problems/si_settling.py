@@ -69,8 +69,6 @@ class SISettling(Problem):
     }
 
     def validate(self, cfg) -> None:
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
         vz = cfg.problem.vz
         if vz != "settling":
             try:
