@@ -29,7 +29,7 @@ from __future__ import annotations
 from typing import Any, ClassVar, Mapping
 
 from ..config import Config, Param, Schema, build_config, with_defaults
-from .._registry import import_submodules, unknown_name
+from .._registry import Discovery, unknown_name
 
 __all__ = ["Problem", "register", "preset", "get_problem", "problem_names", "all_problems"]
 
@@ -61,7 +61,6 @@ class Problem:
 
 
 _REGISTRY: dict[str, Problem] = {}
-_DISCOVERED = False
 
 
 def register(cls: type[Problem]) -> type[Problem]:
@@ -92,12 +91,7 @@ def preset(name: str, base: type[Problem], summary: str, *, smoke_overrides: tup
     return register(cls)
 
 
-def _discover() -> None:
-    global _DISCOVERED
-    if _DISCOVERED:
-        return
-    _DISCOVERED = True
-    import_submodules(__name__, __path__)
+_discover = Discovery(__name__, __path__)
 
 
 def problem_names() -> list[str]:

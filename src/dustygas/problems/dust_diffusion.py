@@ -24,7 +24,7 @@ from ..sph import Box, EquationOfState, ParticleSet, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, one_fluid_from_config
 from ..sph.dust.setup import dust_module
 from ..sph.lattice import cubic_lattice
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, register
 
 __all__ = ["DustDiffusion", "l2_error"]
@@ -46,7 +46,7 @@ class DustDiffusion(Problem):
     summary = "Dust fraction diffusing through gas at rest (Price & Laibe 2015); exact solution, Phantom's set-up."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=10.0, dt_snapshot=1.0, log_every=20),
-        "sph": with_defaults(SPH_SCHEMA, alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0, fixed_dt=0.05),
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, fixed_dt=0.05),
         "dust": with_defaults(DUST_SCHEMA, method="one-fluid", drag="constant-ts", ts=0.1),
         "problem": {
             "nx": Param(32, "particles per side of the cubic lattice", min=8),

@@ -22,7 +22,7 @@ from ..runner import RUN_SCHEMA
 from ..sph import Box, EquationOfState, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, drag_law_from_config, one_fluid_from_config, two_fluid_from_config
 from ..sph.dust.setup import dusty_particles, lattice
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
 __all__ = ["DustyBox"]
@@ -34,7 +34,7 @@ class DustyBox(Problem):
     summary = "Uniform gas and dust, relative velocity decaying by drag (Laibe & Price 2011); exact solution."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=0.1, log_every=1000),
-        "sph": with_defaults(SPH_SCHEMA, kernel="quintic", alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0,
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, kernel="quintic",
                              h_tolerance=1e-6, fixed_dt=1e-3),
         "dust": with_defaults(DUST_SCHEMA, K=0.35, model="full", reconstruction="none"),
         "problem": {

@@ -23,7 +23,7 @@ from ..sph import Box, EquationOfState, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, drag_law_from_config, one_fluid_from_config, two_fluid_from_config
 from ..sph.dust.setup import dusty_particles, lattice, species
 from ..sph.lattice import sine_density_positions
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
 __all__ = ["DustyWave", "velocity_errors"]
@@ -58,7 +58,7 @@ class DustyWave(Problem):
     summary = "Linear sound wave in a dusty gas (Laibe & Price 2011); exact 4x4 matrix-exponential solution."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=0.5, log_every=1000),
-        "sph": with_defaults(SPH_SCHEMA, kernel="quintic", alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0,
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, kernel="quintic",
                              h_tolerance=1e-6),
         "dust": with_defaults(DUST_SCHEMA, K=1000.0),
         "problem": {

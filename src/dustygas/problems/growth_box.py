@@ -29,7 +29,7 @@ from ..sph import Box, EquationOfState, ParticleSet, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, GROWTH_SCHEMA, one_fluid_from_config
 from ..sph.dust.setup import dust_module
 from ..sph.lattice import cubic_lattice
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
 __all__ = ["GrowthBox", "stokes_numbers"]
@@ -50,7 +50,7 @@ class GrowthBox(Problem):
     summary = "Grain growth (or fragmentation) in a uniform dusty box; Vericel et al. (2021) exact Stokes number."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=50.0, dt_history=0.5, log_every=10000),
-        "sph": with_defaults(SPH_SCHEMA, alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0),
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID),
         "dust": with_defaults(DUST_SCHEMA, method="one-fluid", drag="epstein", grain_density=1.0),
         "growth": with_defaults(GROWTH_SCHEMA, enabled=True),
         "problem": {

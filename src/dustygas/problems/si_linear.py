@@ -50,7 +50,7 @@ from ..particles.push import deposit_density
 from ..runner import RUN_SCHEMA
 from . import Problem, preset, register
 
-__all__ = ["SILinear", "StreamingBox", "streaming_box"]
+__all__ = ["SILinear", "StreamingBox", "streaming_box", "SI_GRID", "SI_SCHEME"]
 
 #: the scheme section of the particle problems: VL2 only, PPM with the Colella & Sekora (2008) limiter,
 #: which leaves smooth extrema alone (the classic CW84 limiter clips them at any amplitude:
@@ -60,6 +60,15 @@ SI_SCHEME = {**with_defaults(SCHEME, reconstruction="ppm-cs", riemann="hllc"),
              "integrator": replace(SCHEME["integrator"], choices=GAS_INTEGRATORS,
                                    doc="time integrator (the particles' drag needs VL2's two stages: Stone & "
                                        "Gardiner 2009, Bai & Stone 2010a)")}
+
+
+#: the sections and parameters the one-eigenmode problems share (``si-linear``, ``si-settling``)
+SI_GRID = {
+    "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
+    "nz": Param(64, "cells along z (vertical); one wavelength, L_z = 2 pi Pi / |K_z|", min=4),
+}
+SI_TAUS = Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True)
+SI_AMPLITUDE = Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1)
 
 
 @dataclass
@@ -199,20 +208,17 @@ class SILinear(Problem):
     summary = "One linear streaming-instability eigenmode in a 2D x-z box of gas + particles (YJ07, BS10)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=6.0, dt_history=0.01),
-        "grid": {
-            "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
-            "nz": Param(64, "cells along z (vertical); L_z = 2 pi Pi / |K_z|", min=4),
-        },
+        "grid": SI_GRID,
         "scheme": SI_SCHEME,
         "particles": PARTICLES,
         "problem": {
-            "taus": Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True),
+            "taus": SI_TAUS,
             "mu": Param(3.0, "dust-to-gas density ratio (YJ07's epsilon)", min=0.0, min_open=True),
             "kx": Param(30.0, "radial wavenumber K_x = k_x eta r", "1/(eta r)", min=0.0, min_open=True),
             "kz": Param(30.0, "vertical wavenumber K_z = k_z eta r (sign picks the mode)", "1/(eta r)"),
             "Pi": Param(0.05, "eta v_K / c_s (velocity unit eta v_K = Pi, length unit eta r = Pi H)", min=0.0,
                         min_open=True),
-            "amplitude": Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1),
+            "amplitude": SI_AMPLITUDE,
             "pressure_frame": Param("gas", "global pressure gradient as a force on the gas, or the opposite force "
                                     "on the particles", choices=("gas", "particles")),
         },

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from .._registry import import_submodules, unknown_name
+from .._registry import Discovery, unknown_name
 
 __all__ = ["figure", "figure_names", "get_figure", "FigureSpec"]
 
@@ -31,7 +31,6 @@ class FigureSpec:
 
 
 _FIGURES: dict[str, FigureSpec] = {}
-_DISCOVERED = False
 
 
 def figure(name: str, summary: str, cost: str = "seconds") -> Callable:
@@ -46,12 +45,7 @@ def figure(name: str, summary: str, cost: str = "seconds") -> Callable:
     return deco
 
 
-def _discover() -> None:
-    global _DISCOVERED
-    if _DISCOVERED:
-        return
-    _DISCOVERED = True
-    import_submodules(__name__, __path__)
+_discover = Discovery(__name__, __path__)
 
 
 def _key(name: str) -> tuple:
