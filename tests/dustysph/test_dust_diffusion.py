@@ -1,4 +1,4 @@
-"""Acceptance 4: dust diffusion (Price & Laibe 2015) in Phantom's set-up with L2 <= 2.6e-3 at every step."""
+"""Dust diffusion (Price & Laibe 2015) in Phantom's set-up with L2 <= 2.6e-3 at every step."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Acceptance 1: the dustybox meets Phantom's tolerances (numbers.md §3) with one- and two-fluid dust,
+"""The dustybox (Laibe & Price 2011) meets Phantom's unit-test tolerances with one- and two-fluid dust,
 drag conserves momentum to 1e-12 and kinetic plus thermal energy to 1e-10."""
 
 import numpy as np
@@ -10,7 +10,7 @@ from dustygas.sph.dust.setup import species
 
 from ._run import build
 
-# Phantom's unit test tolerances with the quintic kernel (numbers.md §3)
+# the tolerances of Phantom's dustybox unit test with the quintic kernel
 TOL_VD, TOL_VG, TOL_ACC, TOL_EKIN = 1e-5, 2.5e-5, 3.3e-4, 1e-5
 
 

@@ -1,4 +1,4 @@
-"""Acceptance 2: the dustywave at strong (K = 1000) and weak (K = 1) drag converges to the exact solution
+"""The dustywave (Laibe & Price 2011) at strong (K = 1000) and weak (K = 1) drag converges to the exact solution
 for one- and two-fluid dust, and the two-fluid run reports when h < c_s t_s is violated."""
 
 import numpy as np
@@ -18,7 +18,7 @@ def _errors(nx, *overrides):
 
 
 def test_exact_solution_modes_are_numbers_md_roots():
-    """The matrix of the exact solution has the eigenvalues -i omega of numbers.md §3 for Phantom's wave
+    """The matrix of the exact solution has the eigenvalues -i omega of Laibe & Price (2011)'s dispersion relation for Phantom's wave
     (rho_g = rho_d = c_s = lambda = 1, K = 1000): omega = +-4.44289 - 0.0049348 i and -1999.99 i; the
     exact solution starts from the initial state (to 1e-15)."""
     lam = np.linalg.eigvals(dusty_wave_matrix(2 * np.pi, K=1000.0, cs=1.0, rho_gas=1.0, rho_dust=1.0))

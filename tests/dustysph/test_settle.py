@@ -1,4 +1,4 @@
-"""Acceptance 5: in the settling test the upwind exchange conserves the dust mass to 1e-12 with no clamping
+"""In the settling test (thesis §3.2.5) the upwind exchange conserves the dust mass to 1e-12 with no clamping
 events, the arithmetic exchange with the clamp reports the mass it creates; Figures 3.2 and 3.3 regenerate."""
 
 import numpy as np

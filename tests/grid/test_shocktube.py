@@ -1,4 +1,4 @@
-"""Isothermal shock tube against the exact Riemann solution (acceptance 2 of issue 4).
+"""Isothermal shock tube against the exact Riemann solution.
 
 Default problem: density 1 | 0.1 at rest, c_s = 1, t = 0.2, 256 cells on [-1/2, 1/2]: a left
 rarefaction and a right shock (rho* = 0.30693, u* = 1.18114, shock speed 1.75194).

@@ -1,4 +1,4 @@
-"""Linear sound waves: convergence order of the L1 density error (acceptance 1 of issue 4).
+"""Linear sound waves: convergence order of the L1 density error.
 
 Error measure: after one wave period (one crossing of a wavelength) the L1 norm of
 ``rho - rho_exact`` over the cells, divided by the density amplitude A = 1e-6. For PPM the

@@ -1,4 +1,4 @@
-"""Settling-enhanced streaming instability in the particle-gas engine (issue 5 acceptance 4).
+"""Settling-enhanced streaming instability in the particle-gas engine (thesis Fig 4.6).
 
 ``dustygas reproduce fig4.6`` runs ``si-settling`` at four points of thesis Fig 4.3 (θ_k = 30°,
 the faster sign K_z < 0, Π = 0.05, the vertical drift of eq. 4.19 held by constant forces,

@@ -1,4 +1,4 @@
-"""Conservation (acceptance 3): momentum to round-off, energy to the integrator's order, angular
+"""Conservation: momentum to round-off, energy to the integrator's order, angular
 momentum of a Keplerian ring; and results independent of the thread count."""
 
 import numpy as np
@@ -29,7 +29,7 @@ def _turbulent_box(force="price2012", seed=4, n=10, **opts):
 
 @pytest.mark.parametrize("force", ["price2012", "gasoline2", "gasoline2-wadsley"])
 def test_momentum_conserved_to_round_off(force):
-    """Acceptance 3a: over 100 steps of a shocking periodic box the total momentum changes by less
+    """Over 100 steps of a shocking periodic box the total momentum changes by less
     than 1e-13 of sum m|v| (measured 2.9e-16 and 2.6e-16 for the two forms)."""
     eng = _turbulent_box(force)
     p0 = np.array([eng.history()[f"momentum_{ax}"] for ax in "xyz"])
@@ -42,7 +42,7 @@ def test_momentum_conserved_to_round_off(force):
 
 @pytest.mark.parametrize("force", ["price2012", "gasoline2"])
 def test_energy_error_is_second_order(force):
-    """Acceptance 3b: total energy sum m (v^2/2 + u) with viscosity, conductivity and the switch on,
+    """Total energy sum m (v^2/2 + u) with viscosity, conductivity and the switch on,
     integrated to t = 0.05 with fixed steps dt and dt/2: the error falls by 4 (3.3 to 4.8 allowed),
     i.e. the leapfrog's second order (measured 3.81); it is < 1e-4 of the energy at dt/2 (2.0e-5)."""
     errs = []
@@ -56,7 +56,7 @@ def test_energy_error_is_second_order(force):
 
 
 def test_kepler_ring_angular_momentum_per_orbit():
-    """Acceptance 3c: a cold isothermal gas ring (2D, ~2000 particles, viscosity on) around a point
+    """A cold isothermal gas ring (2D, ~2000 particles, viscosity on) around a point
     mass keeps its angular momentum to 1e-10 relative over one orbit (measured 8e-15); the
     test-particle ring to 1e-13."""
     for kind in ("gas", "test"):

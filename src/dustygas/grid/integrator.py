@@ -25,8 +25,8 @@ VL2 is second order and stable to Courant number 0.5 in 2D and 3D; it is the int
 Athena's particle-gas runs (Bai & Stone 2010a). RK3 is third order in time, so that PPM
 reaches its spatial order on smooth problems; it costs three full stages per step.
 
-Hook for the particles (issue 5)
---------------------------------
+Hook for the particles
+----------------------
 A drag back-reaction enters as the external momentum source ``S_ext`` of a stage, a
 ``(3, nz, ny, nx)`` array of momentum per unit volume and time on the domain cells, added with
 the stage's weight ``f dt`` in the first sweep. For VL2 (Bai & Stone 2010a, §2.3):

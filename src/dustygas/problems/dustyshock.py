@@ -7,7 +7,7 @@ Left :math:`(\\rho_g, P) = (1, 1)`, right :math:`(0.125, 0.1)`, gas and dust at 
 :math:`(1-\\epsilon)u`, so :math:`P = (\\gamma-1)\\rho_{\\rm mix}(1-\\epsilon)u` with the same :math:`\\gamma`): the Riemann
 problem :math:`(2, 0, 1) | (0.25, 0, 0.1)`, with :math:`P_* = 0.29395`, :math:`u_* = 0.59481`,
 :math:`\\rho_{*L} = 0.95938`, :math:`\\rho_{*R} = 0.45961` (mixture) and shock speed 1.30424
-(``numbers.md`` §3; :meth:`DustyShock.asymptotic_solution`). :func:`star_state` averages the
+(Toro 2009's exact solver, :mod:`dustygas.physics.exact_riemann`; :meth:`DustyShock.asymptotic_solution`). :func:`star_state` averages the
 simulated pressure, velocities and densities over the plateaus of that solution.
 
 The tube is periodic, :math:`-1 \\le x < 1`, as in ``sph-sod``; the mirrored interface at

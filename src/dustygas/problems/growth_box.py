@@ -6,7 +6,7 @@ thesis eq. 3.6 with the turbulent relative velocity of eq. 3.7
 (:mod:`~dustygas.sph.dust.grain_size`). In a uniform box the Stokes number
 :math:`St = \\sqrt{\\pi\\gamma/8}\\,\\rho_{\\rm grain}s\\Omega/(\\rho c_s)` then has the exact solution of
 Vericel et al. (2021), :func:`dustygas.physics.growth.stokes_number_growth` with the growth time
-:func:`dustygas.physics.growth.growth_timescale` (``numbers.md`` §3) -- for pure growth
+:func:`dustygas.physics.growth.growth_timescale` -- for pure growth
 (:math:`V_{\\rm frag} = \\infty`, the default) and for pure fragmentation (:math:`V_{\\rm frag} = 0`,
 ``growth-box-fragmentation``), valid until the grains would reach zero size. Past that time the
 sizes stop at ``growth.min_size`` instead of becoming negative.

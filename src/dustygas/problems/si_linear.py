@@ -11,10 +11,10 @@ Units: ``Ω = c_s = H = 1`` for the gas and ``ρ_g0 = 1``; with ``Π = η v_K / 
 unit of the linear theory is ``η v_K = Π`` and its length unit ``η r = Π`` (so ``k = K/Π``).
 The global pressure gradient is the force ``2 η v_K Ω x̂`` on the gas, or with
 ``problem.pressure_frame = "particles"`` the opposite force on the particles (velocities then
-shifted by ``+η v_K ŷ``; numbers.md §1). Orbital advection stores velocities relative to the
+shifted by ``+η v_K ŷ``, as in Bai & Stone 2010a). Orbital advection stores velocities relative to the
 shear (in the x-z plane it only removes the velocity jump of the radial images).
 
-Particles (numbers.md §1, "simulation set-up facts") start on a lattice of ``lattice^2``
+Particles (as in Athena's set-up, Bai & Stone 2010a) start on a lattice of ``lattice^2``
 particles per cell and are *displaced* along ``k̂`` to realise the density wave: the map from
 lattice coordinate ``s_0`` to position ``s`` (both along ``k̂``) solves mass conservation
 ``ρ(s) ds = ρ_0 ds_0`` exactly, ``s + (a/k) sin(k s + φ) = s_0`` (Newton), so there is no
@@ -24,10 +24,10 @@ average of the wave (``Π sinc(k_d Δx_d/2)``), so that the gas sees the cell-av
 the eigenmode (the kernel's transfer function compensated). Velocities are the eigenvector's
 at each particle's displaced position; gas cells get the cell averages of the eigenmode.
 
-Presets ``si-linA`` and ``si-linB``: Youdin & Johansen (2007) Table 1, Athena's set-up
-(numbers.md §1-2): τ_s = 0.1, ε = 3 resp. 0.2, K_x = K_z = 30 resp. 6, Π = 0.05, 64², one
+Presets ``si-linA`` and ``si-linB``: Youdin & Johansen (2007) Table 1 in Athena's set-up
+(Bai & Stone 2010a): τ_s = 0.1, ε = 3 resp. 0.2, K_x = K_z = 30 resp. 6, Π = 0.05, 64², one
 particle per cell, amplitude 1e-6, run to t = 6 resp. 150. Growth: 0.4190091 resp. 0.0154862
-(consistent linearisation); the mode amplitudes of all eight fields go to ``history.h5`` for
+(consistent linearisation; Benítez-Llambay, Krapp & Pessah 2019, Table 4); the mode amplitudes of all eight fields go to ``history.h5`` for
 ``dustygas analyze growth``.
 """
 
