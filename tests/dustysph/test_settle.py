@@ -1,4 +1,4 @@
-"""In the settling test (thesis §3.2.5) the upwind exchange conserves the dust mass to 1e-12 with no clamping
+"""In the settling test (thesis §3.2.5) the upwind exchange conserves the dust mass to round-off with no clamping
 events, the arithmetic exchange with the clamp reports the mass it creates; Figures 3.2 and 3.3 regenerate."""
 
 import numpy as np
@@ -20,26 +20,27 @@ def runs():
 
 
 def test_upwind_conserves_dust_mass_without_clamping(runs):
-    """Upwind (eq. 3.17), clamp enabled: the total dust mass stays within 1e-12 of its initial value at
+    """Upwind (eq. 3.17), clamp enabled: the total dust mass stays within 5e-15 of its initial value at
     every sample (measured 4e-16), no particle is ever clamped, and the dust fraction stays >= 0."""
     up = runs["upwind"]
-    assert np.max(np.abs(up["mass"] - 1.0)) < 1e-12
+    assert np.max(np.abs(up["mass"] - 1.0)) < 5e-15
     assert up["clamps"].max() == 0 and up["created"] == 0.0 and up["destroyed"] == 0.0
     assert up["eps_min"].min() >= 0.0
 
 
 def test_arithmetic_goes_negative_and_clamp_reports_its_mass_error(runs):
-    """Arithmetic (eq. 3.4): without the clamp the dust mass is conserved (1e-12) but the dust fraction at
-    the top of the column goes negative (min -0.025 after two orbits); with the clamp the fractions stay
-    in [0, 1], thousands of particles are clamped, the dust mass grows (by 0.39 % in two orbits) and the
-    reported dust mass created minus destroyed equals that growth to 1e-12 of the total."""
+    """Arithmetic (eq. 3.4): without the clamp the dust mass is conserved (5e-15; measured 2.2e-16) but the
+    dust fraction at the top of the column goes negative (min -0.026 after two orbits); with the clamp the
+    fractions stay in [0, 1], 81,304 clamping events happen, the dust mass grows by 0.404 % in two orbits
+    (bounds 0.36-0.45 %) and the reported dust mass created minus destroyed equals that growth to 1e-14 of
+    the total (measured 6.9e-16)."""
     free, clamped = runs["arithmetic"], runs["arithmetic_clamped"]
-    assert np.max(np.abs(free["mass"] - 1.0)) < 1e-12 and free["eps_min"].min() < -0.01
+    assert np.max(np.abs(free["mass"] - 1.0)) < 5e-15 and free["eps_min"].min() < -0.01
     assert clamped["eps_min"].min() >= 0.0 and clamped["clamps"][-1] > 1000
     growth = clamped["final_mass"] - 1.0
-    assert 0.002 < growth < 0.006
+    assert 0.0036 < growth < 0.0045
     reported = (clamped["created"] - clamped["destroyed"]) / clamped["m0"]
-    assert reported == pytest.approx(growth, abs=1e-12)
+    assert reported == pytest.approx(growth, abs=1e-14)
 
 
 def test_clamp_events_logged_and_in_history(tmp_path):
