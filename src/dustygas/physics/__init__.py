@@ -26,6 +26,9 @@ growth
     (3.9-3.10), fragmentation sizes (3.9), Vericel et al. (2021) analytic growth.
 timestep
     Courant, acceleration and drag time-step criteria (eqs. 2.12-2.15).
+gravity
+    Self-gravity in the shearing box: G~ = 4πGρ/Ω², Hill density, radius and energy, Toomre's
+    Q and dispersion relation.
 exact, riemann, exact_riemann, shearing_sheet
     Exact solutions of the test problems: sound wave, dusty box and dusty wave (Laibe & Price
     2011), dust diffusion (Price & Laibe 2015), the hydrostatic dusty column; isothermal and
