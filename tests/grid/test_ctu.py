@@ -8,10 +8,6 @@ one thread (module constants below carry the measured value next to each toleran
 """
 
 import math
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,11 +22,11 @@ from dustygas.problems import get_problem
 from dustygas.problems.shocktube import shocktube_solution
 from dustygas.problems.soundwave import soundwave_solution
 
+from _threads import assert_identical, results_at_threads
 from ._helpers import order, pair_orders, run_to
 from .test_shearing_wave import worst_error
 from .test_soundwave import linear_wave_error
 
-SRC = Path(__file__).resolve().parents[2] / "src"
 Q, OMEGA = 1.5, 1.0
 
 
@@ -207,31 +203,26 @@ def test_stage_hook_and_external_source():
     assert h["momentum_z"] == pytest.approx(f[2] * 2.0, rel=1e-13)
 
 
-_THREADS_SCRIPT = """
-import hashlib, numpy as np
-from dustygas.grid import GridEngine, Mesh
-out = []
-for shape, oa in (((24, 20, 1), True), ((8, 128, 1), False), ((12, 10, 8), True)):
-    eng = GridEngine(Mesh(shape, (1.0, 1.0, 1.0)), boundaries=("shear-periodic", "periodic", "periodic"), omega=1.0,
-                     orbital_advection=oa, reconstruction="ppm", riemann="hllc", integrator="ctu", cfl=0.8)
-    x, y, z = eng.mesh.meshgrid()
-    eng.set_primitive(1 + 0.2 * np.sin(2 * np.pi * (x + y)) + 0 * z, 0.1 * np.cos(2 * np.pi * y) + 0 * x + 0 * z,
-                      -1.5 * x + 0.05 * np.sin(2 * np.pi * x) + 0 * y + 0.01 * np.cos(2 * np.pi * z), 0.0)
-    for _ in range(10):
-        eng.advance(eng.timestep())
-    out.append(hashlib.sha1(eng.state.tobytes() + eng.budget.tobytes()).hexdigest())
-print(" ".join(out))
-"""
+def ctu_thread_case() -> dict:
+    """State and budgets after ten CTU steps of three boxes (2D x-y with orbital advection, a
+    tall 2D box whose remap runs in parallel, 3D): the case of the thread-count test."""
+    out = {}
+    for k, (shape, oa) in enumerate((((24, 20, 1), True), ((8, 128, 1), False), ((12, 10, 8), True))):
+        eng = GridEngine(Mesh(shape, (1.0, 1.0, 1.0)), boundaries=("shear-periodic", "periodic", "periodic"),
+                         omega=1.0, orbital_advection=oa, reconstruction="ppm", riemann="hllc", integrator="ctu",
+                         cfl=0.8)
+        x, y, z = eng.mesh.meshgrid()
+        eng.set_primitive(1 + 0.2 * np.sin(2 * np.pi * (x + y)) + 0 * z, 0.1 * np.cos(2 * np.pi * y) + 0 * x + 0 * z,
+                          -1.5 * x + 0.05 * np.sin(2 * np.pi * x) + 0 * y + 0.01 * np.cos(2 * np.pi * z), 0.0)
+        for _ in range(10):
+            eng.advance(eng.timestep())
+        out[f"state{k}"], out[f"budget{k}"] = eng.state.copy(), eng.budget.copy()
+    return out
 
 
-def test_results_do_not_depend_on_the_thread_count():
-    hashes = []
-    for threads in ("1", "2"):
-        env = {**os.environ, "NUMBA_NUM_THREADS": threads, "PYTHONPATH": str(SRC)}
-        proc = subprocess.run([sys.executable, "-c", _THREADS_SCRIPT], env=env, capture_output=True, text=True,
-                              check=True)
-        hashes.append(proc.stdout.split())
-    assert hashes[0] == hashes[1] and len(hashes[0]) == 3
+def test_results_do_not_depend_on_the_thread_count(tmp_path):
+    """1 and 2 threads, each in its own interpreter: the same bits."""
+    assert_identical(results_at_threads("grid.test_ctu:ctu_thread_case", tmp_path))
 
 
 def test_courant_limit_and_time_step():

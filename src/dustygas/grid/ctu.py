@@ -54,10 +54,10 @@ from .diagnostics import combine_rates
 from .integrator import PARALLEL_REMAP_NY
 from .orbital_advection import remap_columns
 
-__all__ = ["CTUWork", "ctu_work", "ctu_stage", "CTU_COURANT_LIMIT"]
+__all__ = ["CTUWork", "ctu_work", "ctu_stage"]
 
-#: largest stable Courant number (per-cell maximum over the axes, Athena's convention)
-CTU_COURANT_LIMIT = 1.0
+# its Courant bound (1 in every dimension) is declared with the others in
+# dustygas.grid.integrator.courant_limit
 
 
 class CTUWork(NamedTuple):

@@ -24,9 +24,9 @@ import numpy as np
 
 from ..errors import SetupError, SimulationError, UserError
 from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, fill_ghosts, make_boundaries
-from .ctu import CTU_COURANT_LIMIT, ctu_stage, ctu_work
+from .ctu import ctu_stage, ctu_work
 from .diagnostics import domain_sums, max_signal_rate
-from .integrator import INTEGRATORS, advance_gas, integrator_tables
+from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tables
 from .mesh import Mesh
 from .reconstruct import LIMITERS, RECONSTRUCTIONS
 from .riemann import RIEMANN_SOLVERS
@@ -138,8 +138,7 @@ class GridEngine:
                 raise SetupError(f"{name} '{value}' unknown: choose one of {', '.join(table)}")
         if not cs > 0:
             raise SetupError(f"sound speed cs={cs}: must be positive")
-        # VL2 and Runge-Kutta: the Courant numbers of the axes add up (a diagonal wave); CTU: not
-        limit = CTU_COURANT_LIMIT if integrator == "ctu" else 1.0 / mesh.ndim
+        limit = courant_limit(mesh.ndim, integrator)
         if not 0 < cfl <= limit:
             raise SetupError(f"cfl={cfl}: {integrator} in {mesh.ndim}D is stable for 0 < cfl <= {limit:g}")
         for n, g, axis in zip(mesh.shape, mesh.ghosts, "xyz"):
