@@ -117,8 +117,17 @@ def time_steps(make, seconds: float, repeat: int, threads: int) -> tuple[float, 
     return max(rates), statistics.median(rates), eng.particles.n
 
 
-#: the gas schemes of si-linA compared with Athena: VL2 at its 2D limit's 0.4, CTU at Athena's 0.8
+#: the gas schemes of si-linA compared with Athena: VL2 at its 2D limit's 0.4, CTU at Athena's 0.8;
+#: ``NAME@C`` in ``--integrators`` runs integrator NAME at Courant number C
 SCHEMES = {"vl2": ["scheme.integrator=vl2", "scheme.cfl=0.4"], "ctu": ["scheme.integrator=ctu", "scheme.cfl=0.8"]}
+
+
+def scheme_sets(name: str) -> list[str]:
+    """The ``--set`` overrides of an ``--integrators`` entry: ``vl2``, ``ctu`` or ``NAME@COURANT``."""
+    if "@" in name:
+        integrator, cfl = name.split("@")
+        return [f"scheme.integrator={integrator}", f"scheme.cfl={float(cfl)!r}"]
+    return SCHEMES[name]
 
 
 def full_lina(threads: int, sets: list[str] | None = None) -> dict:
@@ -166,7 +175,7 @@ def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], ro
     runs: dict[str, list[dict]] = {}
     threads = [1, 2] if two_threads and numba.config.NUMBA_NUM_THREADS >= 2 else [1]
     for rnd in range(rounds):
-        jobs = [("athena", None, 1)] + [(name, SCHEMES[name], t) for name in integrators for t in threads]
+        jobs = [("athena", None, 1)] + [(name, scheme_sets(name), t) for name in integrators for t in threads]
         if rnd % 2:  # alternate the order, so that a trend in the machine's load hits both codes alike
             jobs.reverse()
         for name, sets, t in jobs:
@@ -190,7 +199,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--athena", type=Path, help="Athena 4.2 binary built for streaming2d_single: run it side by side")
     ap.add_argument("--athinput", type=Path, help="its input file (default: tst/particle/ of its source tree)")
-    ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena")
+    ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME@COURANT, e.g. ctu@0.9)")
     ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
     ap.add_argument("--one-thread", action="store_true", help="--athena: dustygas on one thread only")
     args = ap.parse_args()
