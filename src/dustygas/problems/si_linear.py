@@ -31,8 +31,9 @@ particle per cell, amplitude 1e-6, run to t = 6 resp. 150. Growth: 0.4190091 res
 ``dustygas analyze growth``.
 
 The gas integrator is VL2 at Courant 0.4 by default (stable to 1/2 in 2D). The single-step
-corner-transport-upwind integrator is stable to Courant 1 and reaches t = 6 in about half the
-cycles, the set-up of Athena's runs (CTU at 0.8; Bai & Stone 2010a)::
+corner-transport-upwind integrator (:mod:`dustygas.grid.ctu`) is stable to Courant 1, as in
+Athena's runs (CTU at 0.8; Bai & Stone 2010a); at 0.9 it reaches t = 6 in 40,821 cycles instead
+of 91,846, in about half the wall time, at a growth error of −1.5 % instead of −0.36 %::
 
     dustygas run si-linA --set scheme.integrator=ctu --set scheme.cfl=0.9
 """
