@@ -9,7 +9,11 @@ Public API (the names below are the stable surface; submodules hold the details)
   (added as they land).
 """
 
+from ._numba_cache import install as _install_numba_cache_guard
 from ._version import __version__
+
+_install_numba_cache_guard()  # before any kernel module is imported (see dustygas._numba_cache)
+
 from .api import get_problem, problem_names, run
 
 __all__ = ["__version__", "run", "problem_names", "get_problem"]
