@@ -111,7 +111,8 @@ def restart(
         prob.validate(cfg)
         check_cadence(cfg.run, float(attrs["engine_t"]))
         for line in found.skipped:
-            message = f"warning: checkpoint {line}; restarting from {found.path.name}"
+            message = (f"warning: skipping checkpoint {line}; restarting from {found.path.name} "
+                       f"(time={float(attrs['engine_t']):.6g})")
             print(f"dustygas: {message}", file=sys.stderr, flush=True)
             rundir.log(message)
         check_memory(prob, cfg)

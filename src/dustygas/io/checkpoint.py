@@ -42,19 +42,19 @@ def read_checkpoint(path: str | Path, problem: str | None = None, required: Iter
     """Read and verify one checkpoint; :class:`CheckpointDamaged` says what is wrong with it."""
     path = Path(path)
     if not path.is_file():
-        raise CheckpointDamaged("is not a file")
+        raise CheckpointDamaged("not a file")
     try:
         arrays, attrs = read_h5(path, verify=True)
     except ChecksumError as exc:
         raise CheckpointDamaged(str(exc)) from None
     except (OSError, RuntimeError, ValueError, KeyError, TypeError, UnicodeDecodeError) as exc:
         detail = (str(exc).splitlines() or [type(exc).__name__])[0]
-        raise CheckpointDamaged(f"cannot be read ({detail[:120]})") from None
+        raise CheckpointDamaged(f"unreadable ({detail[:120]})") from None
     missing = [key for key in ("problem", "dustygas_version", *required) if key not in attrs]
     if missing:
-        raise CheckpointDamaged(f"is not a dustygas checkpoint (no {', '.join(missing)})")
+        raise CheckpointDamaged(f"not a dustygas checkpoint (no {', '.join(missing)})")
     if problem is not None and attrs["problem"] != problem:
-        raise CheckpointDamaged(f"belongs to problem '{attrs['problem']}', not '{problem}'")
+        raise CheckpointDamaged(f"a checkpoint of problem '{attrs['problem']}', not '{problem}'")
     return Checkpoint(path, arrays, attrs)
 
 
@@ -66,7 +66,7 @@ def newest_checkpoint(rundir: RunDirectory, problem: str | None = None, required
         try:
             found = read_checkpoint(path, problem, required)
         except CheckpointDamaged as exc:
-            skipped.append(f"{path.name} {exc}")
+            skipped.append(f"{path.name}: {exc}")
             continue
         found.skipped = skipped
         return found

@@ -12,14 +12,14 @@ stored values, a truncated or substituted dataset is detected (checkpoints use i
 from __future__ import annotations
 
 import hashlib
+import io
 from pathlib import Path
 from typing import Any, Mapping
 
 import h5py
 import numpy as np
 
-from ..errors import OutputError
-from .atomic import atomic_path, output_error
+from .atomic import atomic_path
 
 __all__ = ["write_h5", "read_h5", "checksum", "ChecksumError", "CHECKSUM_ATTR"]
 
@@ -76,28 +76,28 @@ def write_h5(
 ) -> None:
     """Write ``arrays`` (datasets) and ``attrs`` (root attributes) to ``path`` atomically.
 
-    A failed write (disk full, ...) removes the temporary file and raises
-    :class:`~dustygas.errors.OutputError`; ``path`` keeps its previous content.
+    The HDF5 image is assembled in memory and then written with plain file I/O, so a failing
+    disk (full, quota, EFBIG) never reaches the HDF5 library -- whose clean-up after a failed
+    write can crash the process -- but raises :class:`~dustygas.errors.OutputError` after
+    removing the temporary file; ``path`` keeps its previous content. The price is one copy of
+    the file in memory while it is written.
     """
     attrs = {key: _attr(value) for key, value in (attrs or {}).items()}
     arrays = {key: np.asarray(value) for key, value in arrays.items()}
     if checksum:
         attrs[CHECKSUM_ATTR] = _checksum(arrays, attrs)
+    image = io.BytesIO()
+    with h5py.File(image, "w") as f:
+        for key, value in attrs.items():
+            f.attrs[key] = value
+        for key, value in arrays.items():
+            kwargs = {}
+            if compression and value.size > 1024:
+                kwargs = {"compression": compression, "shuffle": True}
+            f.create_dataset(key, data=value, **kwargs)
     with atomic_path(path) as tmp:
-        try:
-            with h5py.File(tmp, "w") as f:
-                for key, value in attrs.items():
-                    f.attrs[key] = value
-                for key, value in arrays.items():
-                    kwargs = {}
-                    if compression and value.size > 1024:
-                        kwargs = {"compression": compression, "shuffle": True}
-                    f.create_dataset(key, data=value, **kwargs)
-        except OutputError:
-            raise
-        except (OSError, RuntimeError) as exc:  # h5py reports a failed write as either
-            raise output_error(path, exc) from None
-
+        with open(tmp, "wb") as fh:
+            fh.write(image.getbuffer())
 
 
 def _read(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, Any], dict[str, Any]]:
@@ -134,5 +134,5 @@ def read_h5(path: str | Path, verify: bool = False) -> tuple[dict[str, np.ndarra
         if not isinstance(stored, str):
             raise ChecksumError("no checksum stored")
         if checksum(arrays, raw) != stored:
-            raise ChecksumError("checksum mismatch (the file was altered or damaged)")
+            raise ChecksumError("checksum mismatch (altered or damaged)")
     return arrays, attrs

@@ -58,10 +58,8 @@ class RunLock:
             except BlockingIOError:
                 holder = _read(fh)
                 fh.close()
-                raise UserError(
-                    f"run directory {self.path} is being written by {_describe(holder)}: "
-                    "wait for it to finish or stop it (kill PID) first"
-                ) from None
+                raise UserError(f"run directory {self.path} is being written by {_describe(holder)}: "
+                                "wait for it to finish, or stop it first") from None
             except OSError:  # no flock on this file system: go on unlocked
                 pass
         self.previous = _read(fh)
@@ -106,5 +104,5 @@ def _read(fh) -> str:
 def _describe(holder: str) -> str:
     parts = holder.split()
     if len(parts) >= 3 and parts[0].isdigit():
-        return f"process {parts[0]} on {parts[1]} (since {parts[2]})"
+        return f"process {parts[0]} on {parts[1]} (since {parts[2]}; kill {parts[0]} stops it with a checkpoint)"
     return "another process"
