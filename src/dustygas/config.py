@@ -359,10 +359,14 @@ def load_toml(path: str | Path) -> dict:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such configuration file") from None
+    except IsADirectoryError:
+        raise ConfigError(f"{path}: is a directory, not a configuration file") from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
     except UnicodeDecodeError:
         raise ConfigError(f"{path}: not a UTF-8 text file") from None
+    except ValueError:  # a NUL byte in the name
+        raise ConfigError(f"{_fmt(str(path))}: not a valid file name") from None
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -45,8 +45,8 @@ def default_run_path(problem: str, base: str | Path = "runs") -> Path:
 def check_output_path(path: str | Path) -> Path:
     """Refuse (one line) an output path that cannot become a run directory; return it.
 
-    Checked before anything is built or written: an empty name, a NUL byte, a component that
-    is an existing file, a parent that is not writable.
+    Checked before anything is built or written: an empty name, a NUL byte, a name too long, a
+    component that is an existing file, a parent where no directory can be created.
     """
     text = os.fspath(path)
     if not text.strip():
@@ -54,6 +54,19 @@ def check_output_path(path: str | Path) -> Path:
     if "\0" in text:
         raise UserError(f"output path {text!r} contains a NUL byte")
     p = Path(text)
+    try:
+        _check_creatable(p)
+    except OSError as exc:
+        raise UserError(f"output path {_short(p)}: {exc.strerror}") from None
+    return p
+
+
+def _short(p: Path) -> str:
+    text = str(p)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _check_creatable(p: Path) -> None:
     if p.exists() and not p.is_dir():
         raise UserError(f"output path {p} exists and is not a directory")
     ancestor = p
@@ -63,20 +76,18 @@ def check_output_path(path: str | Path) -> Path:
         ancestor = ancestor.parent
     if ancestor.exists() and not ancestor.is_dir():
         raise UserError(f"output path {p}: {ancestor} is a file, not a directory")
-    if ancestor != p and not os.access(ancestor, os.W_OK | os.X_OK):
-        raise UserError(f"output path {p}: cannot create it in {ancestor} (permission denied)")
-    if ancestor == p and not os.access(p, os.W_OK | os.X_OK):
-        raise UserError(f"output directory {p} is not writable")
-    if ancestor != p:  # access() trusts the permission bits; /proc or a read-only mount refuse mkdir
-        first = p
-        while first.parent != ancestor:
-            first = first.parent
-        try:
-            first.mkdir()
-            first.rmdir()
-        except OSError as exc:
-            raise UserError(f"output path {p}: cannot create {first} ({exc.strerror})") from None
-    return p
+    if ancestor == p:
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise UserError(f"output directory {p} is not writable")
+        return
+    first = p  # access() trusts the permission bits; /proc or a read-only mount refuse mkdir
+    while first.parent != ancestor:
+        first = first.parent
+    try:
+        first.mkdir()
+        first.rmdir()
+    except OSError as exc:
+        raise UserError(f"output path {_short(p)}: cannot create {_short(first)} ({exc.strerror})") from None
 
 
 class RunDirectory:
