@@ -45,12 +45,12 @@ __all__ = [
 #: history rows by ``dt_history``: more cannot be meant and would loop on the time resolution.
 MAX_OUTPUTS = {"dt_snapshot": 100_000, "dt_checkpoint": 100_000, "dt_history": 100_000_000}
 
-#: Peak bytes per cell of the grid engine (4 conserved variables in 3 state slots, fluxes,
-#: reconstruction and chunk scratch with ghost zones, the particle coupling's fields), measured
-#: as the peak resident size of si-linA builds and steps at 256^2 and 1024^2 cells minus 64^2.
-GRID_BYTES_PER_CELL = 700
-#: Peak bytes per Lagrangian grid particle (position, velocity, kernel weights, sort keys).
-BYTES_PER_PARTICLE = 300
+#: Peak bytes per cell of the grid engine and per Lagrangian particle: the slopes of the peak
+#: resident size of si-linA (build, two steps, history, snapshot and checkpoint arrays) between
+#: 256^2 and 512^2 cells at one particle per cell (457 B per cell and particle) and between one
+#: and four particles per cell at 512^2 (197 B per particle), rounded up by about 10 %.
+GRID_BYTES_PER_CELL = 290
+BYTES_PER_PARTICLE = 220
 
 
 def available_memory() -> int | None:
