@@ -37,7 +37,7 @@ CASES = {
     "grid": ["shearing-wave", "--set", "grid.nx=256", "--set", "grid.ny=256", "--set", "run.max_cycles=300"],
     "sph": ["sph-soundwave-3d", "--set", "problem.layers=32", "--set", "run.max_cycles=40"],
 }
-SETTINGS = {"1T": ["--threads", "1"], "2T": ["--threads", "2"], "default": []}
+SETTINGS = {"1T": ["--threads", "1"], "default": [], "2T": ["--threads", "2"]}
 
 
 def run_once(case: list[str], setting: list[str], workdir: Path) -> tuple[float, str]:
@@ -61,6 +61,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     parser.add_argument("--conditions", nargs="+", default=["busy", "quiet"], choices=["busy", "quiet"])
+    parser.add_argument("--settings", nargs="+", default=list(SETTINGS), choices=list(SETTINGS),
+                        help="thread settings to time (2T with a busy core can take many times 1T)")
     parser.add_argument("--repeat", type=int, default=2)
     args = parser.parse_args()
     print(f"# {time.strftime('%Y-%m-%d %H:%M')}  cores={os.cpu_count()}  load at start={load()}")
@@ -73,7 +75,8 @@ def main() -> None:
                 chosen = set()
                 loads = []
                 for _ in range(args.repeat):
-                    for label, setting in SETTINGS.items():
+                    for label in args.settings:
+                        setting = SETTINGS[label]
                         hog = None
                         if condition == "busy":
                             hog = subprocess.Popen([sys.executable, "-c", "while True: pass"])
@@ -88,11 +91,14 @@ def main() -> None:
                         best[label] = min(best.get(label, float("inf")), wall)
                         if label == "default":
                             chosen.add(threads)
-                ratio = best["default"] / best["1T"]
-                print(f"{name:8s} {condition:5s}  1T {best['1T']:7.2f} s  2T {best['2T']:7.2f} s  "
-                      f"default {best['default']:7.2f} s (threads {'/'.join(sorted(chosen))})  "
-                      f"default/1T {ratio:5.3f}  1T/default {1 / ratio:5.3f}  1T/2T {best['1T'] / best['2T']:5.3f}  "
-                      f"load {min(loads)}-{max(loads)}", flush=True)
+                cells = [f"{label} {best[label]:7.2f} s" for label in args.settings]
+                if "default" in best:
+                    cells[-1] += f" (threads {'/'.join(sorted(chosen))})"
+                if "default" in best and "1T" in best:
+                    cells.append(f"default/1T {best['default'] / best['1T']:5.3f}  1T/default {best['1T'] / best['default']:5.3f}")
+                if "2T" in best and "1T" in best:
+                    cells.append(f"1T/2T {best['1T'] / best['2T']:5.3f}")
+                print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}", flush=True)
 
 
 if __name__ == "__main__":

@@ -32,26 +32,21 @@ def test_a_set_up_without_estimate_still_fails_cleanly(tmp_path):
     assert not (tmp_path / "r").exists()
 
 
-@pytest.mark.parametrize("override, message", [
-    ("problem.taus=1e300", r"the set-up overflowed for these parameters \(overflow encountered"),
-    ("problem.mu=1e300", r"the set-up overflowed for these parameters \(overflow encountered"),
-    ("problem.Pi=1e-300", r"the set-up failed for these parameters \(ZeroDivisionError"),
+@pytest.mark.parametrize("problem, override, error, message", [
+    # absurd magnitudes: set-up errors
+    ("si-linA", "problem.taus=1e300", SetupError, r"the set-up overflowed for these parameters \(overflow encountered"),
+    ("si-linA", "problem.mu=1e300", SetupError, r"the set-up overflowed for these parameters \(overflow encountered"),
+    ("si-linA", "problem.Pi=1e-300", SetupError, r"the set-up failed for these parameters \(ZeroDivisionError"),
+    # cadences that would loop on the time resolution, and a run that never ends
+    ("toy-oscillator", "run.dt_snapshot=1e-12", ConfigError,
+     r"run.dt_snapshot = 1e-12 asks for 2e\+12 snapshots before tlim = 2 \(at most 100000\)"),
+    ("toy-oscillator", "run.dt_history=1e-15", ConfigError, r"asks for 2e\+15 history rows"),
+    ("toy-oscillator", "run.dt_checkpoint=1e-9", ConfigError, r"asks for 2e\+09 checkpoints"),
+    ("toy-oscillator", "run.tlim=inf", ConfigError, r"run.tlim = inf: expected a finite number"),
 ])
-def test_absurd_magnitudes_are_set_up_errors(tmp_path, override, message):
-    with pytest.raises(SetupError, match=message):
-        api.run("si-linA", output=tmp_path / "r", set=[override])
-    assert not (tmp_path / "r").exists()
-
-
-@pytest.mark.parametrize("override, message", [
-    ("run.dt_snapshot=1e-12", r"run.dt_snapshot = 1e-12 asks for 2e\+12 snapshots before tlim = 2 \(at most 100000\)"),
-    ("run.dt_history=1e-15", r"asks for 2e\+15 history rows"),
-    ("run.dt_checkpoint=1e-9", r"asks for 2e\+09 checkpoints"),
-    ("run.tlim=inf", r"run.tlim = inf: expected a finite number"),
-])
-def test_cadences_that_would_loop_are_refused(tmp_path, override, message):
-    with pytest.raises(ConfigError, match=message):
-        api.run("toy-oscillator", output=tmp_path / "r", set=[override])
+def test_refused_before_anything_is_written(tmp_path, problem, override, error, message):
+    with pytest.raises(error, match=message):
+        api.run(problem, output=tmp_path / "r", set=[override])
     assert not (tmp_path / "r").exists()
 
 

@@ -12,7 +12,7 @@ import pytest
 import _toyproblem  # noqa: F401  (registers toy-oscillator)
 from _runs import assert_runs_identical, run_outputs
 from dustygas import api, runner
-from dustygas.errors import EXIT_WALLTIME, ConfigError, UserError
+from dustygas.errors import EXIT_WALLTIME, ConfigError, SimulationError, UserError
 from dustygas.io import read_h5
 from dustygas.io.rundir import RunDirectory
 
@@ -182,3 +182,58 @@ def test_disk_full_is_one_line_exit_3_and_leaves_no_temporary_file(tmp_path):
     assert not [p for p in (tmp_path / "full").rglob(".*.tmp*")]
     for snap in RunDirectory(tmp_path / "full").snapshots():
         assert read_h5(snap)[0]["x"].size == 16
+
+
+class _FailingEngine:
+    """Raises a SimulationError that names neither time nor cycle at its third step."""
+
+    work_units, work_label = 1, "updates"
+
+    def __init__(self):
+        self.t, self.cycle = 0.0, 0
+
+    def timestep(self):
+        return 0.1
+
+    def advance(self, dt):
+        if self.cycle == 2:
+            raise SimulationError("the solver diverged")
+        self.t += dt
+        self.cycle += 1
+
+    def history(self):
+        return {"x": float(self.cycle)}
+
+    def snapshot(self):
+        return {"x": np.zeros(2)}, {}
+
+    checkpoint = snapshot
+
+    def restore(self, arrays, attrs):
+        pass
+
+
+def test_crash_message_carries_time_and_cycle_and_history_is_kept(tmp_path):
+    from dustygas.runner import run_engine
+
+    cfg = api.get_problem("toy-oscillator").config()
+    with pytest.raises(SimulationError, match=r"^the solver diverged at time=0.2 cycle=2$"):
+        run_engine(_FailingEngine(), cfg, tmp_path / "r")
+    cols, _ = read_h5(tmp_path / "r" / "history.h5")
+    assert cols["x"].tolist() == [0.0, 1.0, 2.0]
+    assert "the solver diverged at time=0.2 cycle=2" in read_h5(tmp_path / "r" / "crash.h5")[1]["error"]
+
+
+def test_compile_notice_reports_a_compilation(capsys):
+    import io
+
+    from numba import njit
+
+    from dustygas.cli._compile_notice import compile_notice
+
+    stream = io.StringIO()
+    with compile_notice(stream=stream, every=0.01):
+        njit(lambda x: x + 1)(1)  # not cached: compiled here
+    text = stream.getvalue()
+    assert text.startswith("dustygas: compiling numba kernels (first run of this code")
+    assert "dustygas: compiled 1 kernel in" in text

@@ -62,12 +62,16 @@ class _Notice:
             with self._lock:
                 if self.depth > 0:
                     elapsed = self.busy + time.perf_counter() - self._since
-                    self.say(f"still compiling: {self.count} kernels so far, {elapsed:.0f} s (now {self.current})")
+                    self.say(f"still compiling: {_kernels(self.count)} so far, {elapsed:.0f} s (now {self.current})")
 
     def close(self) -> None:
         self._done.set()
         if self.count:
-            self.say(f"compiled {self.count} kernels in {self.busy:.0f} s (cached for later runs)")
+            self.say(f"compiled {_kernels(self.count)} in {self.busy:.0f} s (cached for later runs)")
+
+
+def _kernels(n: int) -> str:
+    return f"{n} kernel{'' if n == 1 else 's'}"
 
 
 @contextlib.contextmanager
