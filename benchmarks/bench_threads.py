@@ -41,7 +41,7 @@ SETTINGS = {"1T": ["--threads", "1"], "default": [], "2T": ["--threads", "2"]}
 
 
 def run_once(case: list[str], setting: list[str], workdir: Path) -> tuple[float, str]:
-    """Loop wall time of one ``dustygas run`` and the thread count it reported."""
+    """Loop wall time of one ``dustygas run`` and the thread counts its tuner chose, in order."""
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
     out = tempfile.mkdtemp(dir=workdir)
     proc = subprocess.run([sys.executable, "-m", "dustygas", "run", *case, "-q", "--overwrite", "-o", out, *setting],
@@ -49,7 +49,8 @@ def run_once(case: list[str], setting: list[str], workdir: Path) -> tuple[float,
     if proc.returncode != 0:
         raise SystemExit(f"run failed: {' '.join(case + setting)}\n{proc.stderr}")
     wall = float(re.search(r"wall=([0-9.e+-]+)s", proc.stderr).group(1))
-    threads = re.search(r"threads=(\d+)", proc.stderr).group(1)
+    decisions = re.findall(r"threads: (\d+) \(", (Path(out) / "log.txt").read_text())
+    threads = ">".join(decisions) if decisions else re.search(r"threads=(\d+)", proc.stderr).group(1)
     return wall, threads
 
 
@@ -93,7 +94,7 @@ def main() -> None:
                             chosen.add(threads)
                 cells = [f"{label} {best[label]:7.2f} s" for label in args.settings]
                 if "default" in best:
-                    cells[-1] += f" (threads {'/'.join(sorted(chosen))})"
+                    cells[-1] += f" (threads {' | '.join(sorted(chosen))})"
                 if "default" in best and "1T" in best:
                     cells.append(f"default/1T {best['default'] / best['1T']:5.3f}  1T/default {best['1T'] / best['default']:5.3f}")
                 if "2T" in best and "1T" in best:

@@ -17,13 +17,19 @@ use, without repeats):
    candidate, in the mirrored order ``a b .. b a`` so that a load that drifts linearly during
    the trial cancels; the step time per work unit of each candidate is the mean of its blocks;
 3. the fewest threads within ``margin`` of the fastest candidate are used until the next trial,
-   ``recheck_seconds`` of stepping later; the interval doubles (up to ``max_recheck_seconds``)
-   while the choice stays the same and starts again from ``recheck_seconds`` when it changes.
+   provided both halves of the mirrored trial pick the same count; if they disagree (a load
+   that changes from one block to the next) the trial is repeated with blocks twice as long, and
+   after ``max_rounds`` disagreeing rounds one thread is used;
+4. the next trial comes ``recheck_seconds`` of stepping later; the interval doubles (up to
+   ``max_recheck_seconds``) while the choice stays the same and starts again from
+   ``recheck_seconds`` when it changes. Between trials the step cost is watched: a cost that
+   moves by more than ``drift`` from the one the trial measured (another process started or
+   stopped) brings the next trial forward to then.
 
 A trial spends half its blocks on the slower choice. With two candidates and the default
-constants a trial takes about 1 s of stepping, of which about 0.3 s are lost when the slower
-choice is 3 times slower: 1 % of the first 30 s, then less as the interval grows; a load that
-changes is followed within the current interval.
+constants a trial takes about 0.4 s of stepping, of which about 0.13 s are lost when the slower
+choice is 3 times slower: 3 % of a 4 s run, 0.4 % of the first 30 s, then less as the interval
+grows; a load that changes is followed within the current interval.
 """
 
 from __future__ import annotations
@@ -50,10 +56,12 @@ class ThreadTuner:
     available: int
     warmup: int = 3
     block_steps: int = 2
-    block_seconds: float = 0.25
+    block_seconds: float = 0.1
     recheck_seconds: float = 30.0
     max_recheck_seconds: float = 480.0
     margin: float = 0.03
+    max_rounds: int = 3
+    drift: float = 0.3
     candidates: list[int] = field(init=False)
     choice: int = field(init=False)
     decisions: list[str] = field(default_factory=list, init=False)
@@ -67,6 +75,10 @@ class ThreadTuner:
         self._plan: list[int] = []  # remaining blocks of the current trial
         self._block = [0, 0.0, 0.0]  # steps, seconds, work of the block in progress
         self._results: dict[int, list[float]] = {}
+        self._round = 0
+        self._expected = 0.0  # cost per work unit of the choice, as measured by the last trial
+        self._watch = [0, 0.0, 0.0]  # the same for the steps since the last look
+        self._all: dict[int, list[float]] = {}  # block costs of all rounds of the current trial
 
     @property
     def tuning(self) -> bool:
@@ -76,11 +88,15 @@ class ThreadTuner:
         if len(self.candidates) == 1:
             return self.candidates[0]
         if not self._plan and self._steps >= self.warmup and self._since_trial >= self._due():
+            self._round = 0
             self._start_trial()
         return self._plan[0] if self._plan else self.choice
 
     def _due(self) -> float:
-        return 0.0 if not self._results and not self.decisions else self._interval
+        return 0.0 if not self.decisions else self._interval
+
+    def _block_seconds(self) -> float:
+        return self.block_seconds * 2**self._round
 
     def _start_trial(self) -> None:
         order = sorted(self.candidates, key=lambda n: (n != self.choice, n))  # current choice first
@@ -93,31 +109,63 @@ class ThreadTuner:
         self._steps += 1
         if len(self.candidates) == 1 or self._steps <= self.warmup:
             return
+        work = max(work, 1e-300)
         if not self._plan:
             self._since_trial += seconds
+            self._look(seconds, work)
             return
         block = self._block
         block[0] += 1
         block[1] += seconds
-        block[2] += max(work, 1e-300)
-        if block[0] >= self.block_steps and block[1] >= self.block_seconds:
+        block[2] += work
+        if block[0] >= self.block_steps and block[1] >= self._block_seconds():
             self._results[self._plan.pop(0)].append(block[1] / block[2])
             self._block = [0, 0.0, 0.0]
             if not self._plan:
                 self._decide()
 
-    def _decide(self) -> None:
-        cost = {n: sum(v) / len(v) for n, v in self._results.items() if v}
+    def _look(self, seconds: float, work: float) -> None:
+        """Between trials: a step cost that drifted by more than ``drift`` brings the next trial forward."""
+        watch = self._watch
+        watch[0] += 1
+        watch[1] += seconds
+        watch[2] += work
+        if watch[0] < self.block_steps or watch[1] < 10 * self.block_seconds:
+            return
+        cost = watch[1] / watch[2]
+        self._watch = [0, 0.0, 0.0]
+        if self._expected > 0 and not (self._expected / (1 + self.drift) <= cost <= self._expected * (1 + self.drift)):
+            self._since_trial = self._interval = self.recheck_seconds
+
+    @staticmethod
+    def _pick(cost: dict[int, float], margin: float) -> int:
         best = min(cost.values())
-        choice = min(n for n, c in cost.items() if c <= best * (1.0 + self.margin))
+        return min(n for n, c in cost.items() if c <= best * (1.0 + margin))
+
+    def _decide(self) -> None:
+        """Both halves of the mirrored trial must agree; else again with blocks twice as long."""
+        halves = [self._pick({n: v[i] for n, v in self._results.items()}, self.margin) for i in (0, 1)]
+        if self._round == 0:
+            self._all = {}
+        for n, v in self._results.items():
+            self._all.setdefault(n, []).extend(v)
+        if halves[0] != halves[1] and self._round + 1 < self.max_rounds:
+            self._round += 1
+            self._start_trial()
+            return
+        cost = {n: sum(v) / len(v) for n, v in self._all.items()}
+        choice = halves[0] if halves[0] == halves[1] else min(self.candidates)  # still undecided: one thread
         if choice == self.choice and self.decisions:
             self._interval = min(2.0 * self._interval, self.max_recheck_seconds)
         else:
             self._interval = self.recheck_seconds
         self.choice = choice
+        self._expected = cost[choice]
         self._since_trial = 0.0
+        self._watch = [0, 0.0, 0.0]
         rates = ", ".join(f"{n} thread{'s' if n > 1 else ''}: {1.0 / c:.4g}/s" for n, c in sorted(cost.items()))
-        self.decisions.append(f"threads: {choice} ({rates}; next check in {self._interval:.0f} s of stepping)")
+        agreed = "" if halves[0] == halves[1] else f", undecided after {self.max_rounds} rounds"
+        self.decisions.append(f"threads: {choice} ({rates}{agreed}; next check in {self._interval:.0f} s of stepping)")
 
 
 class ThreadControl:

@@ -5,6 +5,7 @@ seconds at ``n`` threads. Quiet 2-core machine: two threads 1.8x faster; one cor
 elsewhere: two threads 3.1x slower (the 12.9 s vs 40.6 s measured for si-linA).
 """
 
+import random
 import subprocess
 import sys
 
@@ -17,6 +18,12 @@ from ._cli import env
 
 QUIET = {1: 1.0, 2: 1.0 / 1.8}
 BUSY = {1: 1.0, 2: 40.6 / 12.9}
+_rng = random.Random(16)
+
+
+def noisy(machine):
+    """Every step's cost scattered by a log-normal factor (sigma 0.5): a machine shared with many jobs."""
+    return lambda t: {n: c * _rng.lognormvariate(0.0, 0.5) for n, c in machine.items()}
 
 
 def _drive(tuner, cost_at, seconds):
@@ -24,31 +31,32 @@ def _drive(tuner, cost_at, seconds):
     clock, spent = 0.0, {}
     while clock < seconds:
         n = tuner.threads_for_next_step()
-        dt = cost_at(clock)[n] * 1e-2  # steps of 0.01 work units: 10 ms at one thread
-        tuner.record(dt, 1e-2)
+        dt = cost_at(clock)[n] * 0.05  # steps of 0.05 work units: 50 ms at one thread
+        tuner.record(dt, 0.05)
         spent[n] = spent.get(n, 0.0) + dt
         clock += dt
     return spent
 
 
-@pytest.mark.parametrize("machine, best", [(QUIET, 2), (BUSY, 1)])
-def test_tuner_picks_the_faster_count_at_a_cost_below_two_percent(machine, best):
+@pytest.mark.parametrize("machine, best, scatter", [(QUIET, 2, False), (BUSY, 1, False), (QUIET, 2, True),
+                                                   (BUSY, 1, True)])
+def test_tuner_picks_the_faster_count_at_a_cost_below_two_percent(machine, best, scatter):
     tuner = ThreadTuner(available=2)
-    spent = _drive(tuner, lambda t: machine, 600.0)
+    spent = _drive(tuner, noisy(machine) if scatter else (lambda t: machine), 600.0)
     assert tuner.choice == best
-    # work done in 600 s against the best fixed setting: trials cost at most 2 % (here 0.19 % and 0.29 %)
+    # work done in 600 s against the best fixed setting: trials cost at most 2 % (0.08-0.3 % here)
     work = sum(s / machine[n] for n, s in spent.items())
     assert work >= 0.98 * 600.0 / machine[best]
 
 
 def test_tuner_follows_a_load_that_changes():
-    """Quiet for 100 s, then a core is taken: within the recheck interval the run is on one thread."""
+    """Quiet for 100 s, then a core is taken: within seconds the run is on one thread again."""
     tuner = ThreadTuner(available=2)
     _drive(tuner, lambda t: QUIET, 100.0)
     assert tuner.choice == 2
     spent = _drive(tuner, lambda t: BUSY, 300.0)
     assert tuner.choice == 1
-    assert spent[2] < 130.0  # at most the current interval (<= 120 s of stepping) plus a trial
+    assert spent[2] < 3.0  # the drift watch brings the next trial forward: about 1 s of steps, then a trial
 
 
 def test_candidates():
