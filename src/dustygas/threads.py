@@ -22,9 +22,9 @@ use, without repeats):
    after ``max_rounds`` disagreeing rounds one thread is used;
 4. the next trial comes ``recheck_seconds`` of stepping later; the interval doubles (up to
    ``max_recheck_seconds``) while the choice stays the same and starts again from
-   ``recheck_seconds`` when it changes. Between trials the step cost is watched: a cost that
-   moves by more than ``drift`` from the one the trial measured (another process started or
-   stopped) brings the next trial forward to then.
+   ``recheck_seconds`` when it changes. Between trials the step cost is watched in windows of
+   ``watch_seconds``: two windows in a row whose cost is off the first window after the decision
+   by more than ``drift`` (another process started or stopped) bring the next trial forward.
 
 A trial spends half its blocks on the slower choice. With two candidates and the default
 constants a trial takes about 0.4 s of stepping, of which about 0.13 s are lost when the slower
@@ -62,6 +62,7 @@ class ThreadTuner:
     margin: float = 0.03
     max_rounds: int = 3
     drift: float = 0.3
+    watch_seconds: float = 2.0
     candidates: list[int] = field(init=False)
     choice: int = field(init=False)
     decisions: list[str] = field(default_factory=list, init=False)
@@ -76,8 +77,9 @@ class ThreadTuner:
         self._block = [0, 0.0, 0.0]  # steps, seconds, work of the block in progress
         self._results: dict[int, list[float]] = {}
         self._round = 0
-        self._expected = 0.0  # cost per work unit of the choice, as measured by the last trial
-        self._watch = [0, 0.0, 0.0]  # the same for the steps since the last look
+        self._expected = 0.0  # cost per work unit of the choice in the first window after a decision
+        self._watch = [0, 0.0, 0.0]  # steps, seconds, work of the current window
+        self._off = 0  # windows in a row whose cost is off the reference
         self._all: dict[int, list[float]] = {}  # block costs of all rounds of the current trial
 
     @property
@@ -125,17 +127,24 @@ class ThreadTuner:
                 self._decide()
 
     def _look(self, seconds: float, work: float) -> None:
-        """Between trials: a step cost that drifted by more than ``drift`` brings the next trial forward."""
+        """Between trials: the step cost in windows of ``watch_seconds``; the first window after a
+        decision is the reference, and two windows in a row off it by more than ``drift`` (another
+        process started or stopped) bring the next trial forward to now."""
         watch = self._watch
         watch[0] += 1
         watch[1] += seconds
         watch[2] += work
-        if watch[0] < self.block_steps or watch[1] < 10 * self.block_seconds:
+        if watch[0] < self.block_steps or watch[1] < self.watch_seconds:
             return
         cost = watch[1] / watch[2]
         self._watch = [0, 0.0, 0.0]
-        if self._expected > 0 and not (self._expected / (1 + self.drift) <= cost <= self._expected * (1 + self.drift)):
-            self._since_trial = self._interval = self.recheck_seconds
+        if self._expected <= 0:
+            self._expected = cost
+            return
+        off = not (self._expected / (1 + self.drift) <= cost <= self._expected * (1 + self.drift))
+        self._off = self._off + 1 if off else 0
+        if self._off >= 2:
+            self._since_trial = self._interval
 
     @staticmethod
     def _pick(cost: dict[int, float], margin: float) -> int:
@@ -160,7 +169,8 @@ class ThreadTuner:
         else:
             self._interval = self.recheck_seconds
         self.choice = choice
-        self._expected = cost[choice]
+        self._expected = 0.0
+        self._off = 0
         self._since_trial = 0.0
         self._watch = [0, 0.0, 0.0]
         rates = ", ".join(f"{n} thread{'s' if n > 1 else ''}: {1.0 / c:.4g}/s" for n, c in sorted(cost.items()))

@@ -44,7 +44,7 @@ def test_tuner_picks_the_faster_count_at_a_cost_below_two_percent(machine, best,
     tuner = ThreadTuner(available=2)
     spent = _drive(tuner, noisy(machine) if scatter else (lambda t: machine), 600.0)
     assert tuner.choice == best
-    # work done in 600 s against the best fixed setting: trials cost at most 2 % (0.08-0.3 % here)
+    # work done in 600 s against the best fixed setting: trials cost at most 2 % (0.08-0.44 % here)
     work = sum(s / machine[n] for n, s in spent.items())
     assert work >= 0.98 * 600.0 / machine[best]
 
@@ -56,7 +56,7 @@ def test_tuner_follows_a_load_that_changes():
     assert tuner.choice == 2
     spent = _drive(tuner, lambda t: BUSY, 300.0)
     assert tuner.choice == 1
-    assert spent[2] < 3.0  # the drift watch brings the next trial forward: about 1 s of steps, then a trial
+    assert spent[2] < 8.0  # two 2-s windows off the reference bring the next trial forward
 
 
 def test_candidates():
