@@ -82,10 +82,6 @@ class ThreadTuner:
         self._off = 0  # windows in a row whose cost is off the reference
         self._all: dict[int, list[float]] = {}  # block costs of all rounds of the current trial
 
-    @property
-    def tuning(self) -> bool:
-        return bool(self._plan)
-
     def threads_for_next_step(self) -> int:
         if len(self.candidates) == 1:
             return self.candidates[0]
