@@ -55,7 +55,7 @@ class ThreadTuner:
 
     available: int
     warmup: int = 3
-    block_steps: int = 2
+    block_steps: int = 1
     block_seconds: float = 0.1
     recheck_seconds: float = 30.0
     max_recheck_seconds: float = 480.0
