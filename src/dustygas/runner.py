@@ -88,7 +88,8 @@ RUN_SCHEMA: dict[str, Param] = {
 
 #: Root attributes every checkpoint written by the loop holds (checked before a restart).
 CHECKPOINT_ATTRS = ("engine_t", "engine_cycle", "loop_snapshot_index", "loop_next_snapshot", "loop_next_history",
-                    "loop_next_checkpoint", "loop_checkpoint_index", "loop_last_snapshot_time", "config_toml")
+                    "loop_next_checkpoint", "loop_checkpoint_index", "loop_last_snapshot_time", "config",
+                    "dustygas_version")
 
 
 @runtime_checkable
@@ -184,7 +185,7 @@ class RunLoop:
         self.run = cfg.run
         self.rundir = rundir
         self.state = _LoopState()
-        self.config_toml = config_text(cfg)
+        self.config_toml = config_text(cfg)  # the ``config`` attribute of every file (restarts read it)
         # progress: True -> tqdm bar; None -> the bar on a terminal, ``cycle= time= dt=`` lines
         # otherwise (the CLI); False -> no progress output (the Python API's default)
         self.progress = sys.stderr.isatty() if progress is None else bool(progress)
@@ -198,6 +199,7 @@ class RunLoop:
             "cycle": int(self.engine.cycle),
             "problem": self.cfg.problem_name,
             "dustygas_version": __version__,
+            "config": self.config_toml,  # the full configuration (config.toml) in every file
         }
 
     def _where(self) -> str:
@@ -239,7 +241,6 @@ class RunLoop:
             "loop_last_snapshot_time": s.last_snapshot_time,
             "engine_t": float(self.engine.t),
             "engine_cycle": int(self.engine.cycle),
-            "config_toml": self.config_toml,
         }
         eattrs = {f"engine_attr_{k}": v for k, v in attrs.items()}
         path = self.rundir.write_checkpoint(

@@ -14,7 +14,7 @@ from __future__ import annotations
 import hashlib
 import io
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import h5py
 import numpy as np
@@ -73,8 +73,13 @@ def write_h5(
     attrs: Mapping[str, Any] | None = None,
     compression: str | None = None,
     checksum: bool = False,
+    annotate: Callable[[h5py.File], None] | None = None,
 ) -> None:
     """Write ``arrays`` (datasets) and ``attrs`` (root attributes) to ``path`` atomically.
+
+    ``annotate(file)``, if given, is called on the open file after the datasets are written (e.g.
+    :func:`dustygas.io.schema.annotate_snapshot`, which adds units, dimension labels and scales);
+    the checksum, if asked for, is computed afterwards over everything the file then holds.
 
     The HDF5 image is assembled in memory and then written with plain file I/O, so a failing
     disk (full, quota, EFBIG) never reaches the HDF5 library -- whose clean-up after a failed
@@ -84,8 +89,6 @@ def write_h5(
     """
     attrs = {key: _attr(value) for key, value in (attrs or {}).items()}
     arrays = {key: np.asarray(value) for key, value in arrays.items()}
-    if checksum:
-        attrs[CHECKSUM_ATTR] = _checksum(arrays, attrs)
     image = io.BytesIO()
     with h5py.File(image, "w") as f:
         for key, value in attrs.items():
@@ -95,21 +98,31 @@ def write_h5(
             if compression and value.size > 1024:
                 kwargs = {"compression": compression, "shuffle": True}
             f.create_dataset(key, data=value, **kwargs)
+        if annotate is not None:
+            annotate(f)
+        if checksum:
+            stored, raw = _contents(f)
+            f.attrs[CHECKSUM_ATTR] = _checksum(stored, raw)
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
             fh.write(image.getbuffer())
 
 
-def _read(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, Any], dict[str, Any]]:
+def _contents(f: h5py.File) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    """Every dataset (by full path) and the raw root attributes of an open file."""
     arrays: dict[str, np.ndarray] = {}
+
+    def visit(name: str, obj: Any) -> None:
+        if isinstance(obj, h5py.Dataset):
+            arrays[name] = obj[()]
+
+    f.visititems(visit)
+    return arrays, dict(f.attrs.items())
+
+
+def _read(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, Any], dict[str, Any]]:
     with h5py.File(path, "r") as f:
-        raw = dict(f.attrs.items())
-
-        def visit(name: str, obj: Any) -> None:
-            if isinstance(obj, h5py.Dataset):
-                arrays[name] = obj[()]
-
-        f.visititems(visit)
+        arrays, raw = _contents(f)
     attrs = {}
     for k, v in raw.items():
         if isinstance(v, bytes):

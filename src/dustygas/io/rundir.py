@@ -30,6 +30,7 @@ from ..errors import OutputError, UserError
 from .atomic import atomic_write_text, output_error, remove_stale_temporaries
 from .hdf5 import read_h5, write_h5
 from .lock import LOCK_NAME, RunLock
+from .schema import annotate_history, annotate_snapshot
 
 __all__ = ["RunDirectory", "default_run_path", "check_output_path"]
 
@@ -201,11 +202,11 @@ class RunDirectory:
 
     def write_snapshot(self, index: int, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any]) -> Path:
         path = self.snapshot_file(index)
-        write_h5(path, arrays, attrs)
+        write_h5(path, arrays, attrs, annotate=annotate_snapshot)
         return path
 
     def write_history(self, columns: Mapping[str, np.ndarray], attrs: Mapping[str, Any]) -> None:
-        write_h5(self.history_file, columns, attrs)
+        write_h5(self.history_file, columns, attrs, annotate=annotate_history)
 
     def write_checkpoint(
         self, index: int, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], keep: int = 2
