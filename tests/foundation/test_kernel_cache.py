@@ -5,6 +5,8 @@ cache, a third loads it from the cache, and after an edit of the kernel *shape* 
 (``sph/kernels.py``, inlined into ``sph/render.py``'s kernel) a fourth sees the new shape.
 The rendered value is the cubic M4 shape at q = 1.5, f = (2 - q)^3 / 4 = 1/32 (Monaghan &
 Lattanzio 1985), exactly; the edit doubles the coefficient, so the value becomes 1/16.
+For the kernels of grid, particles, sph and linear, a second test edits (in a copy) a file
+each one inlines from and checks that the kernel's source stamp changes (no compilation).
 """
 
 import json
@@ -61,3 +63,39 @@ def test_cross_file_edit_recompiles_and_concurrent_processes_share_the_cache(tmp
     kernels.write_text(text.replace(old, "return 0.5 * t2 * t2 * t2 - t1 * t1 * t1,"))
     edited = _result(_start(tmp_path))
     assert edited["value"] == 1.0 / 16.0 and edited["misses"] == 1 and edited["hits"] == 0
+
+
+def _stamp_module(root: Path):
+    """The copy's ``dustygas._numba_cache``, loaded on its own (its root is the copy)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("_copied_numba_cache", root / "_numba_cache.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+# (file defining a cached kernel, a file it inlines from, directly or through another module)
+CROSS_FILE = [
+    ("grid/integrator.py", "grid/riemann.py"),  # through grid/sweep.py
+    ("particles/push.py", "particles/drag.py"),
+    ("particles/push.py", "physics/drag.py"),
+    ("sph/density.py", "sph/kernels.py"),
+    ("linear/modes.py", "linear/operator.py"),
+    ("linear/maps.py", "linear/eigensolver.py"),
+]
+
+
+def test_every_engine_kernel_stamp_covers_the_files_it_inlines(tmp_path):
+    """For grid, particles, sph and linear: an edit of an inlined file (a comment appended, in a
+    copy of the source) changes the stamp of the kernel's file, so its cache entry is not used."""
+    shutil.copytree(SRC, tmp_path / "dustygas", ignore=shutil.ignore_patterns("__pycache__"))
+    root = tmp_path / "dustygas"
+    before = _stamp_module(root)
+    stamps = {kernel: before.source_stamp(root / kernel) for kernel, _ in CROSS_FILE}
+    for kernel, inlined in CROSS_FILE:
+        with open(root / inlined, "a") as fh:
+            fh.write(f"\n# edited for the test of {kernel}\n")
+        after = _stamp_module(root)  # a fresh process would read the files afresh
+        assert after.source_stamp(root / kernel) != stamps[kernel], (kernel, inlined)
+        stamps = {k: after.source_stamp(root / k) for k, _ in CROSS_FILE}
