@@ -53,7 +53,7 @@ from .shearing_box import shear_offset
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
-    "correct_radial_fluxes",
+    "correct_radial_fluxes", "FIELD_PERIODIC", "FIELD_SHEAR", "FIELD_MIRROR", "field_ghost_kinds", "fill_field_ghosts",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
@@ -333,3 +333,90 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
     for k in range(lay.nz):
         total += plane_flux[k]
     return total
+
+
+# --------------------------------------------------------------------------- fields
+#: ghost rules for cell fields other than the gas state (the fields the particles gather and
+#: deposit): a copy one box length away, the shear-periodic copy shifted along y, or a mirror
+#: image (every non-periodic kind: it keeps the sum of a field under the symmetric grid-scale
+#: filter and folds a deposit back into the domain)
+FIELD_PERIODIC, FIELD_SHEAR, FIELD_MIRROR = 0, 1, 2
+
+
+def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, bool]) -> np.ndarray:
+    """Field ghost rule of each axis from the gas boundary kind names (inactive axes: periodic).
+
+    >>> field_ghost_kinds(("shear-periodic", "periodic", "hydrostatic"), (True, True, True)).tolist()
+    [1, 0, 2]
+    """
+    out = []
+    for name, on in zip(kinds, active):
+        if not on or name == "periodic":
+            out.append(FIELD_PERIODIC)
+        elif name == "shear-periodic":
+            out.append(FIELD_SHEAR)
+        else:
+            out.append(FIELD_MIRROR)
+    return np.array(out, dtype=np.int64)
+
+
+@njit(cache=True, error_model="numpy")
+def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter) -> None:
+    """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
+
+    ``kinds``: :data:`FIELD_PERIODIC`, :data:`FIELD_SHEAR` (x only) or :data:`FIELD_MIRROR` per
+    axis. A shear-periodic ghost column is the periodic column shifted conservatively by
+    ``+shift`` cells along y on the inner side and ``-shift`` on the outer (the convention of
+    the gas ghosts above; ``shift`` = shear offset / dy), without a velocity jump: fields that
+    hold the azimuthal gas velocity store it relative to the background shear. Axes z, y, x in
+    this order, each over the full extent of the others (edges and corners).
+    """
+    NZ, NY, NX, nvar = f.shape
+    nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
+    if gz > 0:
+        for m in range(gz):
+            lo, hi = gz - 1 - m, gz + nz + m
+            if kinds[2] == FIELD_MIRROR:
+                slo, shi = gz + m, gz + nz - 1 - m
+            else:
+                slo, shi = gz - 1 - m + nz, gz + m
+            f[lo] = f[slo]
+            f[hi] = f[shi]
+    if gy > 0:
+        for m in range(gy):
+            lo, hi = gy - 1 - m, gy + ny + m
+            if kinds[1] == FIELD_MIRROR:
+                slo, shi = gy + m, gy + ny - 1 - m
+            else:
+                slo, shi = gy - 1 - m + ny, gy + m
+            for k in range(NZ):
+                f[k, lo] = f[k, slo]
+                f[k, hi] = f[k, shi]
+    if gx > 0:
+        shear = kinds[0] == FIELD_SHEAR and ny > 1
+        col = np.empty(ny)
+        out = np.empty(ny)
+        work = np.empty(4 * ny + 19)
+        for m in range(gx):
+            lo, hi = gx - 1 - m, gx + nx + m
+            if kinds[0] == FIELD_MIRROR:
+                slo, shi = gx + m, gx + nx - 1 - m
+            else:
+                slo, shi = gx - 1 - m + nx, gx + m
+            for k in range(NZ):
+                if not shear:
+                    for j in range(NY):
+                        for v in range(nvar):
+                            f[k, j, lo, v] = f[k, j, slo, v]
+                            f[k, j, hi, v] = f[k, j, shi, v]
+                    continue
+                for side in range(2):
+                    dst = lo if side == 0 else hi
+                    src = slo if side == 0 else shi
+                    s = shift if side == 0 else -shift
+                    for v in range(nvar):
+                        for j in range(ny):
+                            col[j] = f[k, gy + j, src, v]
+                        shift_column(col, ny, s, remap_method, remap_limiter, out, work)
+                        for j in range(NY):
+                            f[k, j, dst, v] = out[(j - gy) % ny]

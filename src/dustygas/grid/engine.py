@@ -269,6 +269,19 @@ class GridEngine:
         """Number of stages of the integrator (2 for VL2)."""
         return int(self._ints.shape[0])
 
+    def stage_time_fraction(self, stage: int) -> float:
+        """Time of ``stage`` as a fraction of the step (VL2: 0, then 1/2)."""
+        return float(self._reals[stage, 3])
+
+    def stage_weight(self, stage: int) -> float:
+        """The stage's step factor: it advances by ``stage_weight * dt`` from its base (VL2: 1/2, 1)."""
+        return float(self._reals[stage, 2])
+
+    @property
+    def remap_codes(self) -> tuple[int, int]:
+        """Reconstruction and limiter codes of the scheme (for conservative shifts of other fields)."""
+        return int(self._scheme[0]), int(self._scheme[1])
+
     def stage_input(self, stage: int) -> np.ndarray:
         """The state ``(4, NZ, NY, NX)`` that ``stage`` reads (for VL2: ``U^n``, then ``U^{n+1/2}``)."""
         return self.states[self._ints[stage, 0]]
