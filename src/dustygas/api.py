@@ -12,7 +12,7 @@ from .io.rundir import RunDirectory, default_run_path
 from .problems import get_problem, problem_names
 from .runner import RunResult, run_engine
 
-__all__ = ["run", "restart", "get_problem", "problem_names"]
+__all__ = ["run", "restart", "dry_run", "get_problem", "problem_names"]
 
 
 def run(
@@ -87,3 +87,32 @@ def restart(
     state = read_h5(checkpoints[-1])
     engine = prob.build(cfg)
     return run_engine(engine, cfg, path, progress=progress, restart_from=state)
+
+
+#: zone-cycles and particle-updates per second and core assumed by :func:`dry_run`'s cost (the
+#: si3d laptop run on the project machine, one thread; benchmarks/RESULTS.md)
+DRY_RUN_RATES = {"zone_cycles": 1.5e6}
+
+
+def dry_run(problem: str, config: Iterable[str | Path] = (), set: Iterable[str] = (),
+            data: Mapping | None = None) -> list[str]:
+    """Validate a configuration and describe what the run would need, without building it.
+
+    Returns lines: the problem, cells and particles, memory, steps and the cost in core-hours
+    at :data:`DRY_RUN_RATES` (problems without an ``estimate`` report only that they validate).
+    """
+    prob = get_problem(problem)
+    cfg = prob.config(config, list(set), data)
+    lines = [f"{problem}: configuration valid"]
+    estimate = getattr(prob, "estimate", None)
+    if estimate is None:
+        return lines + ["no resource estimate for this problem"]
+    r = estimate(cfg)
+    hours = r["zone_cycles"] / DRY_RUN_RATES["zone_cycles"] / 3600.0
+    lines += [f"cells {r['cells']:,}  particles {r['particles']:,}",
+              f"memory {r['memory_bytes'] / 2**30:.2f} GiB",
+              f"steps ~{r['steps']:,} to t = {cfg.run.tlim:g}: {r['zone_cycles']:.3g} zone-cycles, "
+              f"{r['particle_updates']:.3g} particle-updates",
+              f"cost ~{hours:,.0f} core-hours at {DRY_RUN_RATES['zone_cycles']:.2g} zone-cycles/s per core "
+              f"(~{hours / 24 / 64:,.1f} days on 64 cores)"]
+    return lines

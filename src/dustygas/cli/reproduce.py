@@ -18,6 +18,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--list", action="store_true", help="list the figures and stop")
     p.add_argument("-o", "--output", default="figures", metavar="DIR", help="output directory (default: figures)")
     p.add_argument("--full", action="store_true", help="thesis-scale resolution instead of the quick default")
+    p.add_argument("--from", dest="run", metavar="RUN",
+                   help="take the figures that come from a simulation (Figs 1.10, 1.13, 4.7-4.10) from this finished run")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -38,8 +40,11 @@ def main(args: argparse.Namespace) -> int:
     if out.exists() and not out.is_dir():
         raise UserError(f"--output {out}: exists and is not a directory")
     out.mkdir(parents=True, exist_ok=True)
+    import inspect
+
     for spec in specs:
         t0 = time.perf_counter()
-        paths = spec.function(out, quick=not args.full)
+        kwargs = {"run": Path(args.run)} if args.run and "run" in inspect.signature(spec.function).parameters else {}
+        paths = spec.function(out, quick=not args.full, **kwargs)
         print(f"{spec.name}: {', '.join(str(p) for p in paths)} ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
     return 0

@@ -32,6 +32,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="checkpoint and stop after this many wall-clock seconds")
     p.add_argument("--threads", type=int, metavar="N", help="numba threads (default: all)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress output")
+    p.add_argument("--dry-run", action="store_true",
+                   help="validate the configuration and print the memory and cost estimate; allocate and write nothing")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -43,6 +45,12 @@ def main(args: argparse.Namespace) -> int:
             raise UserError(f"--threads {args.threads}: expected a positive integer")
         overrides.append(f"run.threads={args.threads}")
     progress = False if args.quiet else None
+    if args.dry_run:
+        if not args.problem or args.restart:
+            raise UserError("--dry-run takes a problem name (and no --restart)")
+        for line in api.dry_run(args.problem, config=args.config, set=overrides):
+            print(line)
+        return 0
     if args.restart:
         if args.problem or args.config or args.output:
             raise UserError("--restart DIR takes no problem name, --config or --output")

@@ -361,7 +361,7 @@ def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, boo
 
 
 @njit(cache=True, error_model="numpy")
-def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter) -> None:
+def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, k_lo, k_hi) -> None:
     """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
 
     ``kinds``: :data:`FIELD_PERIODIC`, :data:`FIELD_SHEAR` (x only) or :data:`FIELD_MIRROR` per
@@ -369,7 +369,8 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter) 
     ``+shift`` cells along y on the inner side and ``-shift`` on the outer (the convention of
     the gas ghosts above; ``shift`` = shear offset / dy), without a velocity jump: fields that
     hold the azimuthal gas velocity store it relative to the background shear. Axes z, y, x in
-    this order, each over the full extent of the others (edges and corners).
+    this order, each over the full extent of the others (edges and corners). The y and x
+    ghosts are filled only in the padded z rows ``k_lo .. k_hi-1`` (all: ``0, NZ``).
     """
     NZ, NY, NX, nvar = f.shape
     nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
@@ -389,7 +390,7 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter) 
                 slo, shi = gy + m, gy + ny - 1 - m
             else:
                 slo, shi = gy - 1 - m + ny, gy + m
-            for k in range(NZ):
+            for k in range(k_lo, k_hi):
                 f[k, lo] = f[k, slo]
                 f[k, hi] = f[k, shi]
     if gx > 0:
@@ -403,7 +404,7 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter) 
                 slo, shi = gx + m, gx + nx - 1 - m
             else:
                 slo, shi = gx - 1 - m + nx, gx + m
-            for k in range(NZ):
+            for k in range(k_lo, k_hi):
                 if not shear:
                     for j in range(NY):
                         for v in range(nvar):

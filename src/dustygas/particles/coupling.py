@@ -58,9 +58,10 @@ from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
 from .deposit import filter_field, image_values, pull_deposit, sort_images
 from .diagnostics import MODE_FIELDS, gas_mode, particle_mode, species_statistics
-from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, Species
+from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
-from .push import PARTICLE_CHUNKS, RESPONSE, cell_trajectories, copy_domain, drift, dust_values, kick, stencil
+from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, kick, occupied_rows, stencil,
+                   trajectory_columns)
 from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
@@ -202,7 +203,10 @@ class ParticleGridEngine:
         nx, ny, nz = geom.shape
         self._ncell = nx * ny * nz
         self._inv_vol = 1.0 / m.cell_volume
-        ntraj = RESPONSE + 3 * self.nspecies
+        ntraj, self._c_rho, self._c_mesh = trajectory_columns(self.nspecies, bool(np.any(codes == EPSTEIN)),
+                                                              self._mesh_term is not None)
+        self._coef = np.zeros((self.nspecies, N_COEF))
+        self._coef_dt = -1.0
         gx, gy, gz = self._gt
         self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
         self._traj_tmp = np.zeros_like(self._traj) if self.smooth else self._traj
@@ -369,11 +373,23 @@ class ParticleGridEngine:
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
                      self._img_val[:, :nv], img_col)
 
-    def _fill_and_filter(self, field, tmp, g, t: float) -> None:
+    def _fill_and_filter(self, field, tmp, g, t: float, rows: tuple[int, int]) -> None:
+        """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
+        (with the ghost rows beyond them where they reach a z face)."""
         shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
-        fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap)
+        nz, gz = self.geometry.shape[2], g[2]
+        k_lo = rows[0] + gz if rows[0] > 0 else 0
+        k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
+        fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
         if self.smooth:
-            filter_field(field, tmp, self._active)
+            filter_field(field, tmp, self._active, k_lo, k_hi)
+
+    def _step_coefficients(self, h: float) -> None:
+        if h != self._coef_dt:
+            for s in range(self.nspecies):
+                if self.species.law[s] == FIXED:
+                    step_coefficients(float(self.species.t_stop[s]), self.forces.gravity_z, h, self._coef[s])
+            self._coef_dt = h
 
     def _gas_terms(self, state: np.ndarray, t: float, out: np.ndarray) -> None:
         if self.gas_terms:
@@ -413,20 +429,24 @@ class ParticleGridEngine:
             self._mesh_term.update(self, u_half[(0,) + self.mesh.interior()], t_half)
             self._mesh_field[...] = self._mesh_term.field
         pred_dt = gas.stage_weight(0) * h
+        nx, ny, nz = self.geometry.shape
+        margin = self._R + (2 if self.smooth else 0)
+        rows = occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
         cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
                           self.nspecies, self.species, self.forces, self._mesh_field, self._shear_rate, self.feedback,
-                          self._traj, self._gt)
-        self._fill_and_filter(self._traj, self._traj_tmp, self._gt, t_half)
+                          self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
+        self._fill_and_filter(self._traj, self._traj_tmp, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
+        self._step_coefficients(h)
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
-             self._traj, self._gt, self.species, self.forces, self._shear_rate, h, self._inv_vol, self._active,
-             self._values, self._budget, self._vmax_work)
+             self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self.forces, self._shear_rate,
+             h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
             self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
-            self._fill_and_filter(self._dep2, self._dep2_tmp, self._g2, t_half)
+            self._fill_and_filter(self._dep2, self._dep2_tmp, self._g2, t_half, rows)
             copy_domain(self._dep2, np.array(self._g2, dtype=np.int64), self._source, 1.0)
             self._have_source = True
         # 6. gas corrector

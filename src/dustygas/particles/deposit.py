@@ -39,6 +39,8 @@ def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row
     nrow = row_start.shape[0] - 1
     for r in range(nrow + 1):
         row_start[r] = 0
+    if m_total == 0:
+        return
     rows = np.empty(m_total, dtype=np.int64)
     for m in range(m_total):
         rows[m] = (img_cell[m, 2] + rz) * nyr + img_cell[m, 1] + ry
@@ -60,6 +62,13 @@ def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row
                 order[s + 1] = order[s]
                 s -= 1
             order[s + 1] = v
+    done = True
+    for m in range(m_total):
+        if order[m] != m:
+            done = False
+            break
+    if done:  # already in order (the common case: the images are written row by row)
+        return
     src = img_src[:m_total].copy()
     cell = img_cell[:m_total].copy()
     w = img_w[:m_total].copy()
@@ -157,32 +166,41 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
 
 
 @njit(cache=True, error_model="numpy")
-def _filter_lines(src, dst, axis, l0, l1):
-    """``dst = F src`` along ``axis`` on lines ``l0 .. l1-1`` of the padded field (cells 2 .. N-3)."""
-    NZ, NY, NX, nv = src.shape
-    for line in range(l0, l1):
-        if axis == 0:
-            k, j = line // NY, line % NY
-            for i in range(2, NX - 2):
-                for c in range(nv):
-                    dst[k, j, i, c] = (10.0 * src[k, j, i, c] + 4.0 * (src[k, j, i - 1, c] + src[k, j, i + 1, c])
-                                       - (src[k, j, i - 2, c] + src[k, j, i + 2, c])) * 0.0625
-        elif axis == 1:
-            k, i = line // NX, line % NX
-            for j in range(2, NY - 2):
-                for c in range(nv):
-                    dst[k, j, i, c] = (10.0 * src[k, j, i, c] + 4.0 * (src[k, j - 1, i, c] + src[k, j + 1, i, c])
-                                       - (src[k, j - 2, i, c] + src[k, j + 2, i, c])) * 0.0625
-        else:
-            j, i = line // NX, line % NX
-            for k in range(2, NZ - 2):
-                for c in range(nv):
-                    dst[k, j, i, c] = (10.0 * src[k, j, i, c] + 4.0 * (src[k - 1, j, i, c] + src[k + 1, j, i, c])
-                                       - (src[k - 2, j, i, c] + src[k + 2, j, i, c])) * 0.0625
+def _filter_line(src, dst, axis, a, b, lo, hi):
+    """``dst = F src`` along ``axis`` on the line ``(a, b)`` (the other two indices) for cells ``lo .. hi-1``."""
+    nv = src.shape[3]
+    if axis == 0:
+        s = src[a, b]
+        d = dst[a, b]
+        for m in range(lo, hi):
+            for c in range(nv):
+                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+    elif axis == 1:
+        s = src[a, :, b]
+        d = dst[a, :, b]
+        for m in range(lo, hi):
+            for c in range(nv):
+                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+    else:
+        s = src[:, a, b]
+        d = dst[:, a, b]
+        for m in range(lo, hi):
+            for c in range(nv):
+                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+
+
+@njit(cache=True, error_model="numpy")
+def _copy_line(src, dst, axis, a, b, lo, hi):
+    if axis == 0:
+        dst[a, b, lo:hi] = src[a, b, lo:hi]
+    elif axis == 1:
+        dst[a, lo:hi, b] = src[a, lo:hi, b]
+    else:
+        dst[lo:hi, a, b] = src[lo:hi, a, b]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def filter_field(f, tmp, active) -> None:
+def filter_field(f, tmp, active, k_lo, k_hi) -> None:
     """The grid-scale filter ``F = 1 - δ⁴/16`` along every active axis of the padded field ``f``
     ``(NZ, NY, NX, nv)`` in place (``tmp`` the same shape): per axis
     ``(-a_{i-2} + 4 a_{i-1} + 10 a_i + 4 a_{i+1} - a_{i+2})/16``, whose transfer function
@@ -190,30 +208,28 @@ def filter_field(f, tmp, active) -> None:
     resolved waves; it is symmetric and keeps the sum of a field over a periodic line (or one
     with mirror ghosts). Each pass needs two filled ghost layers and leaves the outermost two
     of its axis unfiltered: with ``R + 2`` ghost layers the filtered field is valid ``R``
-    cells beyond the domain."""
+    cells beyond the domain.
+
+    Only the padded z rows ``k_lo .. k_hi-1`` are filtered along x and y, and along z the rows
+    ``k_lo + 2 .. k_hi - 3`` (the rest of the field is not needed: a thin dust layer).
+    """
     NZ, NY, NX, nv = f.shape
     for axis in range(3):
         if not active[axis]:
             continue
-        nlines = NZ * NY if axis == 0 else (NZ * NX if axis == 1 else NY * NX)
+        if axis == 0:
+            na, nb, lo, hi = k_hi - k_lo, NY, 2, NX - 2
+        elif axis == 1:
+            na, nb, lo, hi = k_hi - k_lo, NX, 2, NY - 2
+        else:
+            na, nb, lo, hi = NY, NX, max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
+        nlines = na * nb
         nchunk = min(nlines, ROW_CHUNKS)
         for c in prange(nchunk):
-            _filter_lines(f, tmp, axis, c * nlines // nchunk, (c + 1) * nlines // nchunk)
-        n_ax = NX if axis == 0 else (NY if axis == 1 else NZ)
+            for line in range(c * nlines // nchunk, (c + 1) * nlines // nchunk):
+                a = line // nb + (k_lo if axis < 2 else 0)
+                _filter_line(f, tmp, axis, a, line % nb, lo, hi)
         for c in prange(nchunk):
             for line in range(c * nlines // nchunk, (c + 1) * nlines // nchunk):
-                if axis == 0:
-                    k, j = line // NY, line % NY
-                    for i in range(2, n_ax - 2):
-                        for v in range(nv):
-                            f[k, j, i, v] = tmp[k, j, i, v]
-                elif axis == 1:
-                    k, i = line // NX, line % NX
-                    for j in range(2, n_ax - 2):
-                        for v in range(nv):
-                            f[k, j, i, v] = tmp[k, j, i, v]
-                else:
-                    j, i = line // NX, line % NX
-                    for k in range(2, n_ax - 2):
-                        for v in range(nv):
-                            f[k, j, i, v] = tmp[k, j, i, v]
+                a = line // nb + (k_lo if axis < 2 else 0)
+                _copy_line(tmp, f, axis, a, line % nb, lo, hi)

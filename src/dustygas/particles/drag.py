@@ -71,7 +71,7 @@ from numba import njit
 from ..physics.drag import epstein_stopping_time_scalar
 
 __all__ = ["FIXED", "EPSTEIN", "DRAG_LAWS", "Species", "stopping_time", "relax", "oscillator_step", "relaxation_rates",
-           "cell_model", "MAX_SPECIES"]
+           "cell_model", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
 
 FIXED, EPSTEIN = 0, 1
 #: name -> code of the stopping-time laws
@@ -106,6 +106,44 @@ def relax(v0: float, ts: float, h: float, u0: float, a: float, g: float, r: floa
     e = math.exp(-h / ts)
     om = -math.expm1(-h / ts)  # 1 - e without cancellation
     return v0 * e + om * (u0 + g * ts) + a * (h - ts * om) + r
+
+
+@njit(cache=True, error_model="numpy")
+def relax_with(v0: float, c, base: int, ts: float, u0: float, a: float, g: float, r: float) -> float:
+    """:func:`relax` with its step factors ``c[base .. base+2] = (e^{-h/ts}, 1 - e^{-h/ts}, h - ts (1 - e^{-h/ts}))``."""
+    return v0 * c[base] + c[base + 1] * (u0 + g * ts) + a * c[base + 2] + r
+
+
+#: per-species step coefficients: relax factors for h and h/2, then the vertical oscillator's
+#: linear map (z, v) <- (z0, v0, beta0, beta1)
+N_COEF = 14
+
+
+@njit(cache=True, error_model="numpy")
+def step_coefficients(ts: float, w2: float, h: float, out) -> None:
+    """``out[0:6]``: ``e^{-x}, 1 - e^{-x}, x ts - ts (1 - e^{-x})`` for ``x = h/ts`` and ``h/(2 ts)``;
+    ``out[6:14]``: the oscillator map ``z = out[6] z0 + out[7] v0 + out[8] β0 + out[9] β1``,
+    ``v = out[10] z0 + out[11] v0 + out[12] β0 + out[13] β1`` (:func:`oscillator_step` is
+    linear in its four inputs; zeros without gravity). The same for every particle of a
+    species of fixed stopping time, so the kernel computes them once per step."""
+    for m, hh in enumerate((h, 0.5 * h)):
+        e = math.exp(-hh / ts)
+        om = -math.expm1(-hh / ts)
+        out[3 * m] = e
+        out[3 * m + 1] = om
+        out[3 * m + 2] = hh - ts * om
+    if w2 > 0.0:
+        for col in range(4):
+            z0 = 1.0 if col == 0 else 0.0
+            v0 = 1.0 if col == 1 else 0.0
+            b0 = 1.0 if col == 2 else 0.0
+            b1 = 1.0 if col == 3 else 0.0
+            z, v = oscillator_step(z0, v0, ts, w2, h, b0, b1)
+            out[6 + col] = z
+            out[10 + col] = v
+    else:
+        for col in range(8):
+            out[6 + col] = 0.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -240,14 +278,14 @@ def _dexp(a: float, b: float) -> float:
 
 
 @njit(cache=True, error_model="numpy")
-def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work) -> None:
+def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work, perm, bk) -> None:
     """The local drag problem of one cell (module docstring): writes ``A`` into ``out_a`` (3,) and
     every species' response ``R_s`` into ``out_r`` (nsp, 3).
 
     ``u0``, ``f_g`` (3,): gas velocity and non-drag acceleration; ``rho_s`` (nsp,), ``vel_s``,
     ``acc_s`` (nsp, 3): dust density, mean velocity and mean non-drag acceleration per species
     (``rho_s = 0``: absent); ``ts_s`` (nsp,): the species' stopping times in this cell;
-    ``work`` (5, nsp) scratch.
+    scratch: ``work`` (6, nsp) float, ``perm`` (nsp,) int64, ``bk`` (nsp, 3) float.
     """
     tot = rho_g
     for c in range(3):
@@ -263,6 +301,16 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
         for c in range(3):
             out_r[s, c] = 0.0
     if tot == rho_g:
+        return
+    if nsp == 1:  # one species: mu = (1 + eps)/T, mode components (1, -1/eps)
+        T = ts_s[0]
+        eps = rho_s[0] / rho_g
+        mu1 = (1.0 + eps) / T
+        b = h / T
+        fac = b * _dexp(mu1 * h, b) + math.expm1(-b)
+        for c in range(3):
+            # c_k = eps (u0 - V)/(1 + eps); f_k/mu = eps T (f_g - f_s)/(1 + eps)^2
+            out_r[0, c] = eps / (1.0 + eps) * ((u0[c] - vel_s[0, c]) - T * (f_g[c] - acc_s[0, c]) / (1.0 + eps)) * fac
         return
     # group the present species by stopping time (equal times share a pole), sorted by
     # decreasing T: group g has eps_g, T_g; member species map to it
@@ -287,7 +335,6 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
         eps[found] += rho_s[s] / rho_g
         group[s] = found
     # sort groups by decreasing T (insertion; few species)
-    perm = np.empty(ng, dtype=np.int64)
     for q in range(ng):
         perm[q] = q
     for q in range(1, ng):
@@ -297,14 +344,13 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
             perm[r + 1] = perm[r]
             r -= 1
         perm[r + 1] = v
-    es = np.empty(ng)
-    ts = np.empty(ng)
+    es = work[4]
+    ts = work[5]
     for q in range(ng):
         es[q] = eps[perm[q]]
         ts[q] = tg[perm[q]]
     relaxation_rates(es, ts, ng, mu)
     # B_k = (gas part of mode k of the state) - (of the forcing)/mu_k, M-orthogonal projections
-    bk = np.empty((ng, 3))
     for k in range(ng):
         norm = rho_g
         for s in range(nsp):

@@ -19,19 +19,29 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .drag import FIXED, MAX_SPECIES, cell_model, oscillator_step, relax, stopping_time
+from .drag import FIXED, MAX_SPECIES, N_COEF, cell_model, relax_with, step_coefficients, stopping_time
 from .interp import axis_stencil
 from .terms import frame_acceleration
 
-__all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RHO", "MESH", "RESPONSE", "drift", "stencil", "dust_values",
-           "cell_trajectories", "kick", "copy_domain"]
+__all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "drift", "stencil", "dust_values",
+           "cell_trajectories", "kick", "copy_domain", "occupied_rows"]
 
 #: particle passes run over this many chunks of the particle range (fixed: sums per chunk do
 #: not depend on the thread count)
 PARTICLE_CHUNKS = 64
-#: columns of the trajectory field: gas velocity u^n (3), acceleration A (3), gas density,
-#: mesh acceleration (3), then the response R_s (3) of every species
-U0, ACC, RHO, MESH, RESPONSE = 0, 3, 6, 7, 10
+#: columns of the trajectory field: gas velocity u^n (3), acceleration A (3), the response R_s
+#: (3) of every species, then (where needed) the gas density and a mesh acceleration (3)
+U0, ACC, RESPONSE = 0, 3, 6
+
+
+def trajectory_columns(nspecies: int, need_rho: bool, mesh: bool) -> tuple[int, int, int]:
+    """``(ncolumns, column of ρ or -1, first column of the mesh acceleration or -1)``."""
+    n = RESPONSE + 3 * nspecies
+    c_rho = n if need_rho else -1
+    n += 1 if need_rho else 0
+    c_mesh = n if mesh else -1
+    n += 3 if mesh else 0
+    return n, c_rho, c_mesh
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -77,8 +87,9 @@ def dust_values(vel, species, mass, n, inv_vol, momentum, out, col) -> None:
 
 @njit(cache=True, parallel=True, error_model="numpy")
 def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, nsp, sp_tab, ft, mesh_field, shear_rate,
-                      feedback, traj, gt) -> None:
-    """The trajectory field of every domain cell (columns :data:`U0` ... :data:`RESPONSE`).
+                      feedback, traj, gt, c_rho, c_mesh, k_lo, k_hi) -> None:
+    """The trajectory field of the domain cells of rows ``k_lo .. k_hi-1`` (columns
+    :func:`trajectory_columns`).
 
     ``u_old``, ``u_half``: the gas state at ``t^n`` and after the predictor (ghosts ``gas_g``);
     ``s_drag`` ``(3, nz, ny, nx)``: the drag source the predictor applied with step
@@ -88,10 +99,11 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
     stores full velocities (the field holds ``u_y + q Ω x``, periodic across a shearing box),
     else 0. ``traj`` has ``gt = (gx, gy, gz)`` ghost layers (filled later).
     """
-    nx, ny, nz = lay.nx, lay.ny, lay.nz
+    nx, ny = lay.nx, lay.ny
     gx, gy, gz = gas_g
     tx, ty, tz = gt
-    nrows = ny * nz
+    nk = k_hi - k_lo
+    nrows = ny * nk
     nchunk = min(nrows, 64)
     for chunk in prange(nchunk):
         u0 = np.empty(3)
@@ -102,10 +114,12 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
         ts_s = np.ones(MAX_SPECIES)
         out_a = np.empty(3)
         out_r = np.zeros((MAX_SPECIES, 3))
-        work = np.empty((5, MAX_SPECIES))
+        work = np.empty((6, MAX_SPECIES))
+        perm = np.empty(MAX_SPECIES, dtype=np.int64)
+        bk = np.empty((MAX_SPECIES, 3))
         for r in range(chunk * nrows // nchunk, (chunk + 1) * nrows // nchunk):
-            k = r % nz
-            j = r // nz
+            k = k_lo + r % nk
+            j = r // nk
             z = sp.z0 + (k + 0.5) * sp.dz
             for i in range(nx):
                 x = sp.x0 + (i + 0.5) * sp.dx
@@ -119,10 +133,17 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                 cell[U0] = u0[0]
                 cell[U0 + 1] = u0[1] + shear_rate * x
                 cell[U0 + 2] = u0[2]
-                cell[RHO] = rhoh
-                for c in range(3):
-                    cell[MESH + c] = mesh_field[c, k, j, i]
-                if not feedback:
+                if c_rho >= 0:
+                    cell[c_rho] = rhoh
+                if c_mesh >= 0:
+                    for c in range(3):
+                        cell[c_mesh + c] = mesh_field[c, k, j, i]
+                dusty = False
+                if feedback:
+                    for s in range(nsp):
+                        if dep[k, j, i, 4 * s] > 0.0:
+                            dusty = True
+                if not dusty:
                     for c in range(3):
                         cell[ACC + c] = fg[c]
                     for s in range(nsp):
@@ -142,7 +163,7 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                         acc_s[s, 0] = ax + mesh_field[0, k, j, i]
                         acc_s[s, 1] = ay + mesh_field[1, k, j, i]
                         acc_s[s, 2] = az + mesh_field[2, k, j, i] - ft.gravity_z * z
-                cell_model(rhoh, u0, fg, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work)
+                cell_model(rhoh, u0, fg, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work, perm, bk)
                 for c in range(3):
                     cell[ACC + c] = out_a[c]
                 for s in range(nsp):
@@ -151,24 +172,25 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, sp_tab, ft, shear_rate, h, inv_vol,
-         active, values, budget, vmax):
+def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_rho, c_mesh, sp_tab, coef, ft,
+         shear_rate, h, inv_vol, active, values, budget, vmax):
     """Gather, velocity update and second half drift of particles ``0 .. n-1`` (module docstring).
 
     ``pos`` holds ``x^{n+1/2}`` and becomes ``x^{n+1}``; ``vel`` ``v^n`` -> ``v^{n+1}``.
-    ``values[p]`` receives minus the particle's drag impulse per unit volume and time,
-    ``-m (v^{n+1} - v^n - g h)/(V h)`` (the gas's share, deposited next).
-    ``budget`` ``(nchunk, 3)``: per chunk, the momentum the particles received from the
-    non-drag terms; ``vmax`` ``(nchunk, 3)``: the largest ``|v_d|``.
+    ``coef`` ``(nsp, N_COEF)``: the step coefficients of the species of fixed stopping time
+    (:func:`~dustygas.particles.drag.step_coefficients`). ``values[p]`` receives minus the
+    particle's drag impulse per unit volume and time, ``-m (v^{n+1} - v^n - g h)/(V h)`` (the
+    gas's share, deposited next). ``budget`` ``(nchunk, 3)``: per chunk, the momentum the
+    particles received from the non-drag terms; ``vmax`` ``(nchunk, 3)``: the largest ``|v_d|``.
     """
     nx, ny = lay.nx, lay.ny
     tx, ty, tz = gt
     rx, ry, rz = reach[0], reach[1], reach[2]
-    ncol = traj.shape[3]
     w2 = ft.gravity_z
     nchunk = min(max(n, 1), PARTICLE_CHUNKS)
     for c in prange(nchunk):
-        g = np.empty(ncol)
+        g = np.empty(13)  # u0 (3), A (3), R (3), rho, mesh (3)
+        own = np.empty(N_COEF)
         bx = by = bz = 0.0
         mx = my = mz = 0.0
         for p in range(c * n // nchunk, (c + 1) * n // nchunk):
@@ -176,7 +198,7 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, sp_
             i, j, k = key % nx, (key // nx) % ny, key // (nx * ny)
             s = species[p]
             rcol = RESPONSE + 3 * s
-            for q in range(ncol):
+            for q in range(13):
                 g[q] = 0.0
             for dk in range(-rz, rz + 1):
                 wz = wts[p, 2, R + dk]
@@ -192,43 +214,52 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, sp_
                         if w == 0.0:
                             continue
                         f = row[i + tx + di]
-                        for q in range(RHO + 1):
+                        for q in range(6):
                             g[q] += w * f[q]
-                        if ft.mesh:
-                            for q in range(MESH, MESH + 3):
-                                g[q] += w * f[q]
-                        for q in range(rcol, rcol + 3):
-                            g[q] += w * f[q]
+                        for q in range(3):
+                            g[6 + q] += w * f[rcol + q]
+                        if c_rho >= 0:
+                            g[9] += w * f[c_rho]
+                        if c_mesh >= 0:
+                            for q in range(3):
+                                g[10 + q] += w * f[c_mesh + q]
             x, y, z = pos[0, p], pos[1, p], pos[2, p]
             v0x, v0y, v0z = vel[0, p], vel[1, p], vel[2, p]
             ux, uy, uz = g[U0], g[U0 + 1] - shear_rate * x, g[U0 + 2]
-            ts = sp_tab.t_stop[s] if sp_tab.law[s] == FIXED else stopping_time(sp_tab.law[s], sp_tab.t_stop[s],
-                                                                                 sp_tab.grain[s], sp_tab.cs, g[RHO])
+            if sp_tab.law[s] == FIXED:
+                ts = sp_tab.t_stop[s]
+                cf = coef[s]
+            else:
+                ts = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, g[9])
+                step_coefficients(ts, w2, h, own)
+                cf = own
             # the held accelerations at x^{n+1/2} and the velocity predicted over half a step
             ax0, ay0, az0 = frame_acceleration(x, v0x, v0y, ft)
-            mgx, mgy, mgz = g[MESH], g[MESH + 1], g[MESH + 2]
-            hx = relax(v0x, ts, 0.5 * h, ux, g[ACC], ax0 + mgx, 0.0)
-            hy = relax(v0y, ts, 0.5 * h, uy, g[ACC + 1], ay0 + mgy, 0.0)
-            gx_, gy_, gz_ = frame_acceleration(x, hx, hy, ft)
+            mgx, mgy, mgz = (g[10], g[11], g[12]) if c_mesh >= 0 else (0.0, 0.0, 0.0)
+            hx = relax_with(v0x, cf, 3, ts, ux, g[ACC], ax0 + mgx, 0.0)
+            hy = relax_with(v0y, cf, 3, ts, uy, g[ACC + 1], ay0 + mgy, 0.0)
+            gx_, gy_, _ = frame_acceleration(x, hx, hy, ft)
             gx_ += mgx
             gy_ += mgy
             gz_ = az0 + mgz
-            nvx = relax(v0x, ts, h, ux, g[ACC], gx_, g[rcol])
-            nvy = relax(v0y, ts, h, uy, g[ACC + 1], gy_, g[rcol + 1])
+            nvx = relax_with(v0x, cf, 0, ts, ux, g[ACC], gx_, g[6])
+            nvy = relax_with(v0y, cf, 0, ts, uy, g[ACC + 1], gy_, g[7])
             jx = nvx - v0x - gx_ * h
             jy = nvy - v0y - gy_ * h
             if w2 > 0.0:
                 z0 = z - 0.5 * h * v0z
-                zo, vo = oscillator_step(z0, v0z, ts, w2, h, gz_ + uz / ts, g[ACC + 2] / ts)
-                nvz = vo + g[rcol + 2]
-                nz_ = zo + 0.5 * h * g[rcol + 2]
+                b0 = gz_ + uz / ts
+                b1 = g[ACC + 2] / ts
+                zo = cf[6] * z0 + cf[7] * v0z + cf[8] * b0 + cf[9] * b1
+                vo = cf[10] * z0 + cf[11] * v0z + cf[12] * b0 + cf[13] * b1
+                nvz = vo + g[8]
+                nz_ = zo + 0.5 * h * g[8]
                 ext_z = gz_ * h - w2 * h * 0.5 * (z0 + nz_)
-                jz = nvz - v0z - ext_z
             else:
-                nvz = relax(v0z, ts, h, uz, g[ACC + 2], gz_, g[rcol + 2])
+                nvz = relax_with(v0z, cf, 0, ts, uz, g[ACC + 2], gz_, g[8])
                 ext_z = gz_ * h
-                jz = nvz - v0z - ext_z
                 nz_ = z + 0.5 * h * nvz
+            jz = nvz - v0z - ext_z
             q = -mass[p] * inv_vol / h
             values[p, 0] = q * jx
             values[p, 1] = q * jy
@@ -255,6 +286,20 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, sp_
         vmax[c, 0] = mx
         vmax[c, 1] = my
         vmax[c, 2] = mz
+
+
+def occupied_rows(keys, n: int, nx: int, ny: int, nz: int, margin: int, periodic_z: bool) -> tuple[int, int]:
+    """The z rows ``[k_lo, k_hi)`` within ``margin`` of a particle's cell (sorted ``keys``): the
+    fields the particles gather and deposit are needed there only. The whole column when the
+    range comes within ``margin`` of a face of a periodic z axis (its ghosts copy the other side)."""
+    if n == 0 or nz == 1:
+        return 0, nz
+    k0 = int(keys[0]) // (nx * ny)
+    k1 = int(keys[n - 1]) // (nx * ny)
+    lo, hi = k0 - margin, k1 + 1 + margin
+    if periodic_z and (lo < 0 or hi > nz):
+        return 0, nz
+    return max(lo, 0), min(hi, nz)
 
 
 @njit(cache=True, parallel=True, error_model="numpy")

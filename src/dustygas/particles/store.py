@@ -189,6 +189,13 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
         cell_start[keys[p] + 1] += 1
     for c in range(ncell):
         cell_start[c + 1] += cell_start[c]
+    ordered = True  # already canonical (most steps: few particles change cells)
+    for p in range(1, n):
+        if keys[p] < keys[p - 1] or (keys[p] == keys[p - 1] and pid[p] < pid[p - 1]):
+            ordered = False
+            break
+    if ordered:
+        return
     # stable placement: order[slot] = old index
     for c in range(ncell):
         ptr[c] = cell_start[c]
