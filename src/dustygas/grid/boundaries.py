@@ -22,10 +22,13 @@ reflecting
     mirror image with the normal momentum reversed.
 hydrostatic
     (z only, with vertical gravity) an open boundary for a stratified isothermal box: the
-    velocity of the last domain cell is copied (the vertical one only if it points out of
-    the box, else it is set to zero) and the density continues the hydrostatic profile
-    ``rho ~ exp(-z^2 / 2H^2)``, ``H = c_s / Omega``, so that the boundary does not pull the
-    atmosphere down as zero-gradient ``outflow`` does.
+    velocity of the last domain cell is copied and the density continues the hydrostatic
+    profile ``rho ~ exp(-z^2 / 2H^2)``, ``H = c_s / Omega``, so that the boundary does not pull
+    the atmosphere down as zero-gradient ``outflow`` does, and a column at rest stays at rest.
+    The vertical velocity is copied in both directions: a boundary that lets gas out but
+    not in (``v_z`` set to zero when it points inwards) rectifies the vertical oscillations of
+    a turbulent layer into a steady outflow (a settling dust layer in a box of ±0.15 H lost
+    12 % of its gas in 3 Ω⁻¹ that way, 0.4 % with the symmetric copy).
 
 Ghosts are filled axis by axis, z, y, then x, each over the full extent of the other two
 axes, so edges and corners are right too (the particle module's TSC weights need them).
@@ -172,8 +175,7 @@ def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
                         to[i] = factor * frm[i]
                 to, frm = u[3, dst, line, :], u[3, src, line, :]
                 for i in range(to.shape[0]):
-                    outward = frm[i] < 0.0 if side == 0 else frm[i] > 0.0
-                    to[i] = factor * frm[i] if outward else 0.0
+                    to[i] = factor * frm[i]
 
 
 @njit(cache=True, error_model="numpy")
