@@ -32,6 +32,7 @@ def si3d_run(output: Path, run: Path | None = None) -> Path:
     from .. import api
     from ..io.rundir import RunDirectory
 
+    Path(output).mkdir(parents=True, exist_ok=True)
     if run is not None:
         return Path(run)
     path = Path(output) / "runs" / "si3d"
