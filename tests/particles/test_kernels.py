@@ -102,7 +102,7 @@ def test_canonical_order_depends_only_on_positions_and_ids():
         keys = np.zeros(n, dtype=np.int64)
         start = np.zeros(31, dtype=np.int64)
         sort_by_cell(p, v, s, i, m, n, mesh.layout, mesh.spacing, mesh.offsets, keys, np.zeros(n, dtype=np.int64),
-                     np.zeros(30, dtype=np.int64), start, np.zeros(n), np.zeros(n, dtype=np.int64))
+                     np.zeros(30, dtype=np.int64), start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
         cell = np.floor((store.pos[2] + 0.5) * 5).astype(int) * 6 + np.floor((store.pos[0] + 0.5) * 6).astype(int)
         np.testing.assert_array_equal(keys[:n], cell)
         assert np.all(np.diff(cell) >= 0)
