@@ -1,4 +1,4 @@
-"""Conservation of gas + particles (thesis eq. 4.25).
+"""Momentum conservation of gas + particles (thesis eq. 4.25).
 
 Random gas (density and velocity) and randomly placed particles of two species (one with a
 fixed stopping time, one with Epstein drag) exchange momentum through drag. The gas fluxes
