@@ -1,8 +1,8 @@
 """The public Python API: what a script imports (``import dustygas as dg``).
 
 ==========================  =========================================================================
-run a problem               :func:`run`, :func:`restart`, :func:`problem_names`, :func:`get_problem`,
-                            :func:`problem_parameters`
+run a problem               :func:`run`, :func:`restart`, :func:`dry_run`, :func:`problem_names`,
+                            :func:`get_problem`, :func:`problem_parameters`
 read a run                  :func:`open_run` (xarray Datasets: ``.history``, ``.snapshot(i)``)
 export for other tools      :func:`export` (Athena++ athdf + XDMF, yt particles, Phantom, CSV)
 look at a run               :func:`plot_history`, :func:`plot_snapshot`, :func:`movie`
@@ -50,7 +50,7 @@ from .problems import problem_names as _problem_names
 from .runner import CHECKPOINT_ATTRS, RunResult, run_engine
 
 __all__ = [
-    "run", "restart", "get_problem", "problem_names", "problem_parameters",
+    "run", "restart", "dry_run", "get_problem", "problem_names", "problem_parameters",
     "open_run", "export", "plot_history", "plot_snapshot", "movie",
     "measure_growth", "growth_theory", "figure_names", "reproduce_figures",
 ]
@@ -176,6 +176,33 @@ def restart(
     return run_engine(engine, cfg, rundir, progress=progress, restart_from=(found.arrays, attrs))
 
 
+#: zone-cycles and particle-updates per second and core assumed by :func:`dry_run`'s cost (the
+#: si3d laptop run on the project machine, one thread; benchmarks/RESULTS.md)
+DRY_RUN_RATES: dict[str, float] = {"zone_cycles": 1.5e6}
+
+
+def dry_run(problem: str, config: Iterable[str | Path] = (), set: Iterable[str] = (),
+            data: Mapping[str, Any] | None = None) -> list[str]:
+    """Validate a configuration and describe what the run would need, without building it.
+
+    Returns lines: the problem, cells and particles, memory, steps and the cost in core-hours
+    at :data:`DRY_RUN_RATES` (problems without an ``estimate`` report only that they validate).
+    """
+    prob = _get_problem(problem)
+    cfg = prob.config(config, list(set), data)
+    lines = [f"{problem}: configuration valid"]
+    estimate = getattr(prob, "estimate", None)
+    if estimate is None:
+        return lines + ["no resource estimate for this problem"]
+    r = estimate(cfg)
+    hours = r["zone_cycles"] / DRY_RUN_RATES["zone_cycles"] / 3600.0
+    lines += [f"cells {r['cells']:,}  particles {r['particles']:,}",
+              f"memory {r['memory_bytes'] / 2**30:.2f} GiB",
+              f"steps ~{r['steps']:,} to t = {cfg.run.tlim:g}: {r['zone_cycles']:.3g} zone-cycles, "
+              f"{r['particle_updates']:.3g} particle-updates",
+              f"cost ~{hours:,.0f} core-hours at {DRY_RUN_RATES['zone_cycles']:.2g} zone-cycles/s per core "
+              f"(~{hours / 24 / 64:,.1f} days on 64 cores)"]
+    return lines
 # ------------------------------------------------------------------------------------ reading
 
 

@@ -1,11 +1,11 @@
-"""Bad input is one line and exit status 2, before anything is written."""
+"""Bad input is one line and exit status 2, before anything is allocated or written."""
 
 import numpy as np
 import pytest
 
 from dustygas.errors import SetupError
 from dustygas.grid import GridEngine, Mesh
-from dustygas.particles import ParticleGridEngine, ParticleStore
+from dustygas.particles import ParticleGridEngine, ParticleStore, VerticalGravity
 
 from foundation._cli import cli
 
@@ -16,11 +16,16 @@ from foundation._cli import cli
     (["nsh", "--set", "problem.taus=[0.1, 1.0]"], "problem.taus has 2 species but problem.mu has 1"),
     (["si-settling", "--set", "problem.vz=down"], "problem.vz"),
     (["si-linA", "--set", "problem.kz=0"], "problem.kz = 0"),
+    (["si3d", "--set", "problem.Hp=0"], "problem.Hp"),
+    (["si3d", "--set", "problem.Hp=0.06"], "problem.Hp = 0.06: the layer"),
+    (["si3d", "--set", "problem.per_cell=1e6"], "problem.per_cell = 1e+06"),
+    (["si3d", "--set", "particles.boundary_x=outflow"], "particles.boundary_x = 'outflow'"),
+    (["si3d", "--set", "particles.boundary_z=shear-periodic"], "particles.boundary_z = 'shear-periodic'"),
 ])
 def test_bad_configuration_one_line_exit_2(tmp_path, args, fragment):
     res = cli("run", *args, "-o", "out", cwd=tmp_path)
-    assert res.returncode == 2
-    assert fragment in res.stderr and res.stderr.count("\n") == 1
+    assert res.returncode == 2, res.stderr
+    assert fragment in res.stderr and res.stderr.count("\n") == 1, res.stderr
     assert not (tmp_path / "out").exists()
 
 
@@ -34,18 +39,19 @@ def _store(x=0.0):
     return ParticleStore.create(np.array([[x], [0.0], [0.0]]), np.zeros((3, 1)))
 
 
-def test_engine_refuses_what_it_cannot_do():
-    with pytest.raises(SetupError, match="periodic or shear-periodic"):
-        ParticleGridEngine(_gas(("outflow", "periodic", "periodic")), _store(), [0.1])
-    with pytest.raises(SetupError, match="vl2"):
-        ParticleGridEngine(_gas(integrator="rk2"), _store(), [0.1])
-    with pytest.raises(SetupError, match=r"must lie in \[-0.5, 0.5\)"):
-        ParticleGridEngine(_gas(), _store(0.7), [0.1])
-    with pytest.raises(SetupError, match="stopping times"):
-        ParticleGridEngine(_gas(), _store(), [0.0])
-    with pytest.raises(SetupError, match="species must be in 0 .. 0"):
-        ParticleGridEngine(_gas(), ParticleStore.create(np.zeros((3, 1)), np.zeros((3, 1)), species=1), [0.1])
-    with pytest.raises(SetupError, match="particle cfl"):
-        ParticleGridEngine(_gas(), _store(), [0.1], cfl=1.5)
-    with pytest.raises(SetupError, match="finite"):
-        ParticleStore.create(np.full((3, 1), np.nan), np.zeros((3, 1)))
+@pytest.mark.parametrize("make, match", [
+    (lambda: ParticleGridEngine(_gas(("outflow", "periodic", "periodic")), _store(), [0.1],
+                                boundaries=("periodic", "periodic", "periodic")), "boundary_x = 'periodic'"),
+    (lambda: ParticleGridEngine(_gas(integrator="rk2"), _store(), [0.1]), "vl2"),
+    (lambda: ParticleGridEngine(_gas(), _store(0.7), [0.1]), r"must lie in \[-0.5, 0.5\)"),
+    (lambda: ParticleGridEngine(_gas(), _store(), [0.0]), "stopping times"),
+    (lambda: ParticleGridEngine(_gas(), ParticleStore.create(np.zeros((3, 1)), np.zeros((3, 1)), species=1), [0.1]),
+     "species must be in 0 .. 0"),
+    (lambda: ParticleGridEngine(_gas(), _store(), [0.1], cfl=1.5), "particle cfl"),
+    (lambda: ParticleStore.create(np.full((3, 1), np.nan), np.zeros((3, 1))), "finite"),
+    (lambda: ParticleGridEngine(GridEngine(Mesh((8, 1, 1), (1.0, 1.0, 1.0))), _store(), [0.1],
+                                particle_terms=[VerticalGravity(1.0)]), "vertical gravity on the particles"),
+])
+def test_engine_refuses_what_it_cannot_do(make, match):
+    with pytest.raises(SetupError, match=match):
+        make()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-HELP = "analyse a run directory (growth of the recorded linear mode; bound clumps)"
+HELP = "analyse a run directory (growth of the recorded mode; bound clumps; dust in stratified runs)"
 DESCRIPTION = """Analyse a run directory.
 
   dustygas analyze growth runs/si-linA            growth rate, frequency, fit window
@@ -23,7 +23,19 @@ first half of the run, in steps of 1/20) at which the fields' growth rates agree
 
 JSON keys: growth_rate, frequency, window [t0, t1], fields {name: {growth_rate, frequency}},
 spread (max-min over mean of the fields' growth rates), samples, window_rule, theory
-{growth_rate, frequency, problem} (empty for other problems)."""
+{growth_rate, frequency, problem} (empty for other problems).
+
+Stratified particle runs (si3d and its presets); each writes PNG + CSV (and HDF5 for maps)
+into RUN/analysis/ or -o DIR:
+
+  dustygas analyze surface-density RUN      Sigma_d(x, y), its 2D FFT, the dominant angle theta_k(t)
+  dustygas analyze max-density RUN          max rho_p / rho_g0 and the mean midplane density vs time
+  dustygas analyze cdf RUN                  cumulative distribution of the dust density
+  dustygas analyze scale-height RUN         particle scale height H_p of every species vs time
+  dustygas analyze dispersion RUN           particle velocity dispersions of every species vs time
+  dustygas analyze slabs RUN                particles near the midplane and the boundaries (x-y, x-z)"""
+
+STRATIFIED = ("surface-density", "max-density", "cdf", "scale-height", "dispersion", "slabs")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -39,6 +51,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     from . import analyze_clumps
 
     analyze_clumps.add_arguments(sub)
+    for name in STRATIFIED:
+        a = sub.add_parser(name, help=f"{name} of a stratified particle run (PNG + CSV)")
+        a.add_argument("run", metavar="RUN", help="run directory")
+        a.add_argument("-o", "--output", metavar="DIR", help="output directory (default RUN/analysis)")
+        a.add_argument("--snapshot", type=int, action="append", metavar="N",
+                       help="snapshot index (repeatable; default: the newest, or four spread over the run)")
+        a.add_argument("--slab", type=float, default=0.03, metavar="DELTA", help="slab half-width in H (slabs)")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -49,8 +68,14 @@ def main(args: argparse.Namespace) -> int:
         from . import analyze_clumps
 
         return analyze_clumps.main(args)
+    if args.analyze_command in STRATIFIED:
+        from ..analysis.outputs import analyze_stratified
+
+        for path in analyze_stratified(args.analyze_command, args.run, args.output, args.snapshot, args.slab):
+            print(path)
+        return 0
     if args.analyze_command != "growth":
-        raise UserError("analyze: name a subcommand: growth or clumps (see dustygas analyze --help)")
+        raise UserError(f"analyze: name a subcommand: growth, clumps, {', '.join(STRATIFIED)} (see dustygas analyze --help)")
     fit = measure_growth(args.run, window=args.window, fields=args.fields or MODE_FIELDS,
                          nonlinear=args.nonlinear, agree=args.agree)
     fit.theory = theory_for_run(args.run)

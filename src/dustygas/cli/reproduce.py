@@ -27,6 +27,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--list", action="store_true", help="list the figures and stop")
     p.add_argument("-o", "--output", default="figures", metavar="DIR", help="output directory (default: figures)")
     p.add_argument("--full", action="store_true", help="thesis-scale resolution instead of the quick default")
+    p.add_argument("--from", dest="run", metavar="RUN",
+                   help="take the figures that come from a simulation (Figs 1.10, 1.13, 4.7-4.10) from this finished run")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -59,7 +61,8 @@ def main(args: argparse.Namespace) -> int:
             exp = c["expected"] if isinstance(c["expected"], str) else f"{c['expected']:.6g}"
             print(f"  {verdict} {c['name']}: {c['value']:.6g} vs {exp} ({c['tolerance']})", file=sys.stderr)
 
-    records = make_figures([s.name for s in specs], out, quick=not args.full, log=log)
+    extra = {"run": Path(args.run)} if args.run else {}
+    records = make_figures([s.name for s in specs], out, quick=not args.full, log=log, **extra)
     failed = [r.name for r in records if not r.passed]
     print(f"gallery: {out / 'index.html'} ({len(records)} figures"
           f"{', failed: ' + ' '.join(failed) if failed else ''})", file=sys.stderr)

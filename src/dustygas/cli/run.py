@@ -39,6 +39,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--threads", type=int, metavar="N",
                    help="numba threads (default: chosen automatically from measured step times)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress output")
+    p.add_argument("--dry-run", action="store_true",
+                   help="validate the configuration and print the memory and cost estimate; allocate and write nothing")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -51,6 +53,12 @@ def main(args: argparse.Namespace) -> int:
             raise UserError(f"--threads {args.threads}: expected a positive integer")
         overrides.append(f"run.threads={args.threads}")
     progress = False if args.quiet else None
+    if args.dry_run:
+        if not args.problem or args.restart:
+            raise UserError("--dry-run takes a problem name (and no --restart)")
+        for line in api.dry_run(args.problem, config=args.config, set=overrides):
+            print(line)
+        return 0
     with compile_notice(enabled=not args.quiet):
         if args.restart is not None:
             if args.problem or args.config or args.output is not None or args.overwrite:

@@ -22,10 +22,13 @@ reflecting
     mirror image with the normal momentum reversed.
 hydrostatic
     (z only, with vertical gravity) an open boundary for a stratified isothermal box: the
-    velocity of the last domain cell is copied (the vertical one only if it points out of
-    the box, else it is set to zero) and the density continues the hydrostatic profile
-    ``rho ~ exp(-z^2 / 2H^2)``, ``H = c_s / Omega``, so that the boundary does not pull the
-    atmosphere down as zero-gradient ``outflow`` does.
+    velocity of the last domain cell is copied and the density continues the hydrostatic
+    profile ``rho ~ exp(-z^2 / 2H^2)``, ``H = c_s / Omega``, so that the boundary does not pull
+    the atmosphere down as zero-gradient ``outflow`` does, and a column at rest stays at rest.
+    The vertical velocity is copied in both directions: a boundary that lets gas out but
+    not in (``v_z`` set to zero when it points inwards) rectifies the vertical oscillations of
+    a turbulent layer into a steady outflow (a settling dust layer in a box of ±0.15 H lost
+    12 % of its gas in 3 Ω⁻¹ that way, 0.4 % with the symmetric copy).
 
 Ghosts are filled axis by axis, z, y, then x, each over the full extent of the other two
 axes, so edges and corners are right too (the particle module's TSC weights need them).
@@ -53,7 +56,7 @@ from .shearing_box import shear_offset
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
-    "correct_radial_fluxes",
+    "correct_radial_fluxes", "FIELD_PERIODIC", "FIELD_SHEAR", "FIELD_MIRROR", "field_ghost_kinds", "fill_field_ghosts",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
@@ -172,8 +175,7 @@ def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
                         to[i] = factor * frm[i]
                 to, frm = u[3, dst, line, :], u[3, src, line, :]
                 for i in range(to.shape[0]):
-                    outward = frm[i] < 0.0 if side == 0 else frm[i] > 0.0
-                    to[i] = factor * frm[i] if outward else 0.0
+                    to[i] = factor * frm[i]
 
 
 @njit(cache=True, error_model="numpy")
@@ -333,3 +335,85 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc) -> float:
     for k in range(lay.nz):
         total += plane_flux[k]
     return total
+
+
+# --------------------------------------------------------------------------- fields
+#: ghost rules for cell fields other than the gas state (the fields the particles gather and
+#: deposit): a copy one box length away, the shear-periodic copy shifted along y, or a mirror
+#: image (every non-periodic kind: it keeps the sum of a field under the symmetric grid-scale
+#: filter and folds a deposit back into the domain)
+FIELD_PERIODIC, FIELD_SHEAR, FIELD_MIRROR = 0, 1, 2
+
+
+def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, bool]) -> np.ndarray:
+    """Field ghost rule of each axis from the gas boundary kind names (inactive axes: periodic).
+
+    >>> field_ghost_kinds(("shear-periodic", "periodic", "hydrostatic"), (True, True, True)).tolist()
+    [1, 0, 2]
+    """
+    out = []
+    for name, on in zip(kinds, active):
+        if not on or name == "periodic":
+            out.append(FIELD_PERIODIC)
+        elif name == "shear-periodic":
+            out.append(FIELD_SHEAR)
+        else:
+            out.append(FIELD_MIRROR)
+    return np.array(out, dtype=np.int64)
+
+
+@njit(cache=True, error_model="numpy")
+def _field_ghost_pair(kind, m, n, g):
+    """Indices of the ``m``-th lower and upper ghost layers of a field and of the layers they copy
+    (a mirror image like a reflecting wall, else periodic)."""
+    src_kind = REFLECTING if kind == FIELD_MIRROR else PERIODIC
+    return (g - 1 - m, g + n + m, _source_index(src_kind, True, m, n, g), _source_index(src_kind, False, m, n, g))
+
+
+@njit(cache=True, error_model="numpy")
+def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, k_lo, k_hi) -> None:
+    """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
+
+    ``kinds``: :data:`FIELD_PERIODIC`, :data:`FIELD_SHEAR` (x only) or :data:`FIELD_MIRROR` per
+    axis. A shear-periodic ghost column is the periodic column shifted conservatively by
+    ``+shift`` cells along y on the inner side and ``-shift`` on the outer (the convention of
+    the gas ghosts above; ``shift`` = shear offset / dy), without a velocity jump: fields that
+    hold the azimuthal gas velocity store it relative to the background shear. Axes z, y, x in
+    this order, each over the full extent of the others (edges and corners). The y and x
+    ghosts are filled only in the padded z rows ``k_lo .. k_hi-1`` (all: ``0, NZ``).
+    """
+    NZ, NY, NX, nvar = f.shape
+    nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
+    for m in range(gz):
+        lo, hi, slo, shi = _field_ghost_pair(kinds[2], m, nz, gz)
+        f[lo] = f[slo]
+        f[hi] = f[shi]
+    for m in range(gy):
+        lo, hi, slo, shi = _field_ghost_pair(kinds[1], m, ny, gy)
+        for k in range(k_lo, k_hi):
+            f[k, lo] = f[k, slo]
+            f[k, hi] = f[k, shi]
+    if gx > 0:
+        shear = kinds[0] == FIELD_SHEAR and ny > 1
+        col = np.empty(ny)
+        out = np.empty(ny)
+        work = np.empty(4 * ny + 19)
+        for m in range(gx):
+            lo, hi, slo, shi = _field_ghost_pair(kinds[0], m, nx, gx)
+            for k in range(k_lo, k_hi):
+                if not shear:
+                    for j in range(NY):
+                        for v in range(nvar):
+                            f[k, j, lo, v] = f[k, j, slo, v]
+                            f[k, j, hi, v] = f[k, j, shi, v]
+                    continue
+                for side in range(2):
+                    dst = lo if side == 0 else hi
+                    src = slo if side == 0 else shi
+                    s = shift if side == 0 else -shift
+                    for v in range(nvar):
+                        for j in range(ny):
+                            col[j] = f[k, gy + j, src, v]
+                        shift_column(col, ny, s, remap_method, remap_limiter, out, work)
+                        for j in range(NY):
+                            f[k, j, dst, v] = out[(j - gy) % ny]

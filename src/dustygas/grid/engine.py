@@ -178,11 +178,16 @@ class GridEngine:
         nz, ny, nx = mesh.array_shape
         self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
         self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
+        if integrator == "ctu" and mesh.active[2] and BOUNDARY_KINDS[boundaries[2]] not in (PERIODIC, SHEAR_PERIODIC):
+            # the CTU stage does not record the mass fluxes of open z faces (budget[2:4])
+            raise UserError(f"scheme.integrator = 'ctu' needs a periodic z boundary, not '{boundaries[2]}' (use vl2)")
         self._ctu = ctu_work(mesh.array_shape, mesh.ndim) if integrator == "ctu" else None
         self._wrap = tuple(BOUNDARY_KINDS[k] in (PERIODIC, SHEAR_PERIODIC) for k in boundaries)
+        self._zflux = np.zeros((2, 4, mesh.shape[1], mesh.shape[0]))
         self._no_ext = np.zeros((3, 1, 1, 1))
-        #: time integrals [mass through the radial boundary, y-momentum from the source terms]
-        self.budget = np.zeros(2)
+        #: time integrals [mass through the radial boundary, y-momentum from the source terms,
+        #: mass out through the lower and the upper z face]
+        self.budget = np.zeros(4)
         self.t = 0.0
         self.cycle = 0
         self.work_units = mesh.ncells
@@ -267,7 +272,7 @@ class GridEngine:
         rate, bad = advance_gas(
             self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
             self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate, self._no_ext, False,
-            self._bflux, self.budget, numba.get_num_threads(),
+            self._bflux, self._zflux, self.budget, numba.get_num_threads(),
         )
         self._check(rate, bad)
         self.t += dt
@@ -277,6 +282,19 @@ class GridEngine:
     def stage_count(self) -> int:
         """Number of stages of the integrator (2 for VL2)."""
         return int(self._ints.shape[0])
+
+    def stage_time_fraction(self, stage: int) -> float:
+        """Time of ``stage`` as a fraction of the step (VL2: 0, then 1/2)."""
+        return float(self._reals[stage, 3])
+
+    def stage_weight(self, stage: int) -> float:
+        """The stage's step factor: it advances by ``stage_weight * dt`` from its base (VL2: 1/2, 1)."""
+        return float(self._reals[stage, 2])
+
+    @property
+    def remap_codes(self) -> tuple[int, int]:
+        """Reconstruction and limiter codes of the scheme (for conservative shifts of other fields)."""
+        return int(self._scheme[0]), int(self._scheme[1])
 
     def stage_input(self, stage: int) -> np.ndarray:
         """The state ``(4, NZ, NY, NX)`` that ``stage`` reads (for VL2: ``U^n``, then ``U^{n+1/2}``)."""
@@ -306,7 +324,7 @@ class GridEngine:
             rate, bad = advance_gas(
                 self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
                 self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-                ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
+                ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget, numba.get_num_threads(),
             )
         if stage == nstage - 1:
             self._check(rate, bad)
@@ -350,6 +368,10 @@ class GridEngine:
         if self.shear_periodic or self._sources.active:
             out["radial_boundary_mass"] = float(self.budget[0])
             out["momentum_y_source"] = float(self.budget[1])
+        if self.mesh.active[2] and self._bc.z_lo != PERIODIC:
+            out["gas_mass_lost_z_lower"] = float(self.budget[2])
+            out["gas_mass_lost_z_upper"] = float(self.budget[3])
+            out["gas_mass_lost"] = float(self.budget[2] + self.budget[3])
         return {k: float(v) for k, v in out.items()}
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
@@ -372,5 +394,7 @@ class GridEngine:
         if u.shape != self.states[0][inner].shape:
             raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {self.states[0][inner].shape}")
         self.states[0][inner] = u
-        self.budget[:] = arrays["budget"]
+        budget = np.asarray(arrays["budget"])
+        self.budget[:] = 0.0  # checkpoints written before the z-face budget hold its first two entries
+        self.budget[: budget.size] = budget
         self._update_rate()

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import SetupError
 
-__all__ = ["Mesh", "Layout", "Spacing", "NGHOST"]
+__all__ = ["Mesh", "Layout", "Spacing", "Offsets", "NGHOST", "cell_average_factor"]
 
 #: Ghost cells per side in every active dimension: PPM reconstruction in the corrector needs
 #: three (the interface value at the first face uses four cells on each side of the parabola).
@@ -53,6 +53,36 @@ class Spacing(NamedTuple):
     lx: float
     ly: float
     lz: float
+
+
+class Offsets(NamedTuple):
+    """Where a block sits in the global mesh: its first domain cell ``(i0, j0, k0)`` and the
+    global cell counts ``(NX, NY, NZ)``. A single-block run has offsets 0 and the block's own
+    counts. Kernels that need global indices (the particle assignment weights, which must not
+    depend on how the box is split) form ``global = local + offset`` and positions relative to
+    the global origin ``Spacing.x0 - i0 dx``."""
+
+    i0: int
+    j0: int
+    k0: int
+    NX: int
+    NY: int
+    NZ: int
+
+
+def cell_average_factor(k, dx) -> float:
+    """Cell average of ``e^{i k.x}`` over a cell centred at ``x_c``, divided by ``e^{i k.x_c}``.
+
+    .. math:: \\frac{1}{\\Delta V}\\int_{cell} e^{i k\\cdot x}\\,dV = e^{i k\\cdot x_c}
+              \\prod_d \\operatorname{sinc}\\left(\\frac{k_d \\Delta x_d}{2}\\right)
+
+    (``sinc(u) = sin(u)/u``): a finite-volume mesh holds cell averages, so a Fourier mode of
+    point values ``A`` appears with amplitude ``A`` times this factor.
+
+    >>> round(cell_average_factor((3.141592653589793, 0.0, 0.0), (0.5, 1.0, 1.0)), 12)
+    0.900316316157
+    """
+    return float(np.prod([np.sinc(kd * d / (2 * np.pi)) for kd, d in zip(k, dx)]))
 
 
 @dataclass(frozen=True)
@@ -142,6 +172,11 @@ class Mesh:
     @property
     def spacing(self) -> Spacing:
         return Spacing(*self.dx, *self.lower, *self.size)
+
+    @property
+    def offsets(self) -> Offsets:
+        """A single block: offsets 0, global counts = its own."""
+        return Offsets(0, 0, 0, *self.shape)
 
     # ------------------------------------------------------------------ coordinates
     def centers(self, axis: int, ghosts: bool = False) -> np.ndarray:

@@ -34,7 +34,35 @@ from typing import NamedTuple
 
 from numba import njit
 
-__all__ = ["SourceTerms", "source_terms", "momentum_source", "shear_offset", "shear_velocity_jump"]
+__all__ = ["RotatingFrame", "rotating_frame", "SourceTerms", "source_terms", "momentum_source", "shear_offset",
+           "shear_velocity_jump"]
+
+
+class RotatingFrame(NamedTuple):
+    """Coefficients of the rotating-frame acceleration of gas and particles alike (thesis
+    eq. 4.2b-d): ``a_x = coriolis_x v_y + tidal_x x``, ``a_y = -coriolis_y v_x``."""
+
+    coriolis_x: float
+    coriolis_y: float
+    tidal_x: float
+
+
+def rotating_frame(omega: float = 0.0, q: float = 1.5, orbital_advection: bool = False) -> RotatingFrame:
+    """The Coriolis and tidal coefficients of a box rotating at ``omega`` with shear ``q``.
+
+    Full velocities: ``(2 Omega v_y + 2 q Omega^2 x, -2 Omega v_x)``; velocities relative to the
+    shear ``v' = v + q Omega x y^`` (orbital advection): ``(2 Omega v'_y, -(2 - q) Omega v'_x)``
+    (module docstring). The one place these coefficients are written; the gas source terms and
+    the particle force term both use it.
+
+    >>> rotating_frame(1.0, 1.5)
+    RotatingFrame(coriolis_x=2.0, coriolis_y=2.0, tidal_x=3.0)
+    >>> rotating_frame(1.0, 1.5, orbital_advection=True).coriolis_y
+    0.5
+    """
+    if orbital_advection:
+        return RotatingFrame(2.0 * omega, (2.0 - q) * omega, 0.0)
+    return RotatingFrame(2.0 * omega, 2.0 * omega, 2.0 * q * omega**2)
 
 
 class SourceTerms(NamedTuple):
@@ -83,14 +111,11 @@ def source_terms(
     >>> source_terms(omega=1.0, q=1.5, orbital_advection=True).coriolis_y
     0.5
     """
-    if orbital_advection:
-        tidal, cor_y = 0.0, (2.0 - q) * omega
-    else:
-        tidal, cor_y = 2.0 * q * omega**2, 2.0 * omega
+    frame = rotating_frame(omega, q, orbital_advection)
     grav = omega**2 if vertical_gravity else 0.0
     force = 2.0 * eta_vK * omega
     active = omega != 0.0 or force != 0.0 or grav != 0.0
-    return SourceTerms(2.0 * omega, tidal, cor_y, grav, force, active)
+    return SourceTerms(frame.coriolis_x, frame.tidal_x, frame.coriolis_y, grav, force, active)
 
 
 @njit(cache=True, error_model="numpy")

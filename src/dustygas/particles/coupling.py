@@ -2,59 +2,46 @@
 
 Scheme
 ------
-One step ``t^n -> t^{n+1} = t^n + Δt`` interleaves the particles with the two stages of the
-gas's VL2 integrator (Stone & Gardiner 2009), following the predictor-corrector structure of
-Bai & Stone (2010a, §3) and made second order with *our* gas stages:
+One step ``t^n -> t^{n+1} = t^n + h`` interleaves the particles with the two stages of the gas
+integrator (VL2, Stone & Gardiner 2009: a predictor to ``t^n + h/2``, a corrector to
+``t^{n+1}``):
 
-1. **particle predictor** (:func:`~dustygas.particles.push.particle_stage`): half drift
-   ``x^{n+1/2} = x^n + (Δt/2) v^n``;
-2. **gas predictor**: ``U^{n+1/2} = U^n + (Δt/2)[L_donor(U^n) + S^{n-1/2}]``, with the
-   back-reaction ``S^{n-1/2}`` deposited by the previous corrector (step 3). The VL2 predictor
-   only needs ``U^{n+1/2}`` to first order, and ``S^{n-1/2} = S(t^n) + O(Δt)`` changes it by
-   ``O(Δt²)``, which enters ``U^{n+1}`` at ``O(Δt³)``: the step stays second order, costs one
-   particle gather and deposit instead of two, and the source is the drag impulse actually
-   exchanged, bounded however stiff the drag. The first step (and only it) computes
-   ``S^0 = Σ_i W(x_i^0) m_i (v_i^0 - u^0(x_i^0)) / (t_s V_cell)`` explicitly;
-Second order: the particle update is a drift-kick-drift (leapfrog) in position with a
-time-centred (midpoint) kick, gathering the gas at the midpoint time and position; the gas
-corrector, the only stage whose source enters ``U^{n+1}``, receives the time-centred drag
-deposited at the time-centred positions. Momentum: the gas receives in the corrector exactly
-minus the drag impulse ``Σ m_i Δv_{drag,i}`` the particles received, with weights that sum to
-one, so ``Σ_cells ρu V + Σ_i m_i v_i`` changes only by the round-off of the sums (eq. 4.25)
--- the predictor's source only shapes ``U^{n+1/2}``. The source carried from one step to the
-next is part of the checkpoint, so a restarted run is bit-identical. Steady states: with uniform gas and a
-uniform particle lattice the NSH drift (thesis eq. 4.8) is an exact fixed point of every stage
-(both drag integrators keep a steady drift exactly; TSC and CIC deposit a moving lattice
-uniformly).
+1. drift ``x^{n+1/2} = x^n + (h/2) v^n``; the exchange step (particle boundaries,
+   :mod:`dustygas.particles.boundaries`); sort into canonical order; weights; image records;
+2. with back-reaction, deposit each species' density and momentum (positions ``x^{n+1/2}``,
+   velocities ``v^n``);
+3. gas predictor ``U^{n+1/2} = U^n + (h/2)[L(U^n) + S^{n-1/2} + S_terms]``, ``S^{n-1/2}``
+   the drag source of the previous step's corrector (0 at the first step: an O(h²) error once);
+4. the local drag problem of every cell (:mod:`dustygas.particles.drag`): the gas velocity
+   ``ũ(t)`` each species will see over the step, from ``U^n``, the gas's own acceleration
+   ``(U^{n+1/2} - U^n)/(h/2)`` less the drag it received, and the dust deposit; through the
+   grid-scale filter;
+5. every particle gathers ``ũ`` and integrates its velocity exactly over the step with the
+   held accelerations of its terms (:mod:`dustygas.particles.terms`; vertical gravity exactly,
+   with the drag), deposits minus its drag impulse (through the filter), and drifts
+   ``x^{n+1} = x^{n+1/2} + (h/2) v^{n+1}``; the exchange step;
+6. gas corrector with the deposited source ``S^{n+1/2}`` (and the gas terms).
+
+Momentum: the gas receives exactly minus the drag impulse ``Σ m_i Δv_drag,i`` of the
+particles through weights that sum to one inside the domain, so the total momentum changes
+only by the terms (the engine's history has their impulse) and the round-off of the sums.
+Steady states: the NSH drift (thesis eq. 4.8) of uniform gas and a particle lattice is an
+exact fixed point; a uniform dusty box relaxes at the exact rate for any step and stiffness.
 
 Frames: particle velocities are stored like the gas's (full velocities, or relative to the
-shear ``v + q Ω x ŷ`` under orbital advection); the Coriolis/tidal terms are the gas's
-(thesis eq. 4.2), ``(2Ω v_y + 2qΩ²x, -2Ω v_x)`` or ``(2Ω v'_y, -(2 - q)Ω v'_x)``. The global
-pressure gradient is either on the gas (``shearing_box.eta_vK``) or, opposite, on the
-particles (``acceleration = (-2 η v_K Ω, 0, 0)``).
+shear ``v + q Ω x ŷ`` under orbital advection). The global pressure gradient is either on the
+gas (``shearing_box.eta_vK``) or, opposite, on the particles (a
+:class:`~dustygas.particles.terms.ConstantAcceleration`).
 
-Time step: the gas's Courant step, the particles' ``cfl Δx_d / max|v_d|`` (so that a particle
-moves less than a cell per step, which the deposit scheme needs), and optionally a fraction of
-the smallest stopping time. Two-way coupling of heavy (μ > 1), stiff (t_s ≪ Δt) dust needs the
-last: the predictor's explicit source then overshoots.
+Time step: the gas's Courant step and the particles' ``cfl Δx_d / max|v_d|`` (a particle
+moves less than a cell per step, which the sort-then-deposit order needs); the drag needs no
+limit (``drag_cfl`` can impose one).
 
-What mattered for linB (Youdin & Johansen 2007; Athena misses it by -17.7 %)
------------------------------------------------------------------------------
-linB (ε = 0.2, K = 6, s = 0.0154862) grows 150 Ω⁻¹ through 459,000 steps at 64 cells per
-wavelength, so anything that damps or pollutes a resolved wave shows. Measured at 64², one
-particle per cell, t = 0 -> 150 (growth error, spread of the eight fields; 2026-11-22):
-
-* shipped defaults (PPM-CS, HLLC, TSC through the grid-scale filter, semi-implicit drag):
-  **-2.10 %**, fields within 0.012 %;
-* without the grid-scale filter (``smooth=False``): -3.86 %, fields within 0.58 %. The
-  particles drift through the mesh at the NSH speed and their deposit aliases the particle
-  noise onto grid-scale gas waves that feed back on them: by t = 150 the dust density's
-  grid-scale Fourier content (|m| > 8) is 1.4e-6, above the linB mode's 8.9e-7 (3.9e-13 with
-  the filter);
-* the classic Colella & Woodward (1984) PPM limiter instead of Colella & Sekora's (with the
-  filter): -6.16 %, fields within 0.015 %: it clips the smooth extrema of the tiny gas wave.
-
-linA (s = 0.419, 6 Ω⁻¹) is insensitive to these choices: -0.36 % with the defaults.
+Accuracy at the benchmarked settings (64², one particle per cell; PPM-CS, HLLC, TSC through
+the grid-scale filter): si-linA grows 0.36 % and si-linB 2.1 % too slowly (Youdin & Johansen
+2007; Athena: 1.2 % and 17.7 %). What mattered for linB: the grid-scale filter (without it
+-3.9 %: particles drifting through the mesh alias their noise onto grid-scale gas waves) and
+the Colella & Sekora (2008) limiter (the classic CW84 limiter: -6.2 %).
 """
 
 from __future__ import annotations
@@ -65,18 +52,22 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, UserError
+from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
+from ..grid.mesh import cell_average_factor
 from ..physics.drag import epstein_grain_size
-from .deposit import chunk_bounds
-from .diagnostics import MODE_FIELDS, gas_mode, particle_mode
-from .drag import DRAG_INTEGRATORS
-from .interp import KERNEL_REACH, KERNELS, Cells
-from .push import CORRECT, EPSTEIN, FIXED, PREDICT, Forces, Species, deposit_density, particle_stage
-from .store import ParticleStore, cell_keys, counting_sort, slab_axis, slab_starts
+from .boundaries import apply_boundaries, build_images, make_particle_boundaries
+from .deposit import filter_field, image_values, pull_deposit, sort_images
+from .diagnostics import MODE_FIELDS, gas_mode, particle_mode, species_statistics
+from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
+from .interp import KERNEL_REACH, KERNELS
+from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, kick, occupied_rows, stencil,
+                   trajectory_columns)
+from .store import ParticleStore, sort_by_cell
+from .terms import MeshAcceleration, RotatingFrame, force_table
 
-__all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS"]
+__all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_density"]
 
-#: name -> code of the stopping-time laws
-DRAG_LAWS = {"fixed": FIXED, "epstein": EPSTEIN}
+FACES = ("x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper")
 
 #: gas integrators the coupling supports: its drag is predicted and corrected with the two
 #: stages of VL2 or CTU, both of which give U^{n+1/2} (Bai & Stone 2010a, §2.3); the
@@ -85,7 +76,7 @@ GAS_INTEGRATORS = ("vl2", "ctu")
 
 
 class ParticleGridEngine:
-    """A :class:`~dustygas.grid.GridEngine` (VL2) with Lagrangian dust particles.
+    """A two-stage gas engine (VL2) with Lagrangian dust particles (module docstring).
 
     Parameters
     ----------
@@ -99,18 +90,19 @@ class ParticleGridEngine:
     drag_law
         ``"fixed"`` or ``"epstein"`` per species (one string for all).
     kernel
-        Assignment function ``"ngp"``, ``"cic"``, ``"tsc"`` (gather and deposit alike).
-    integrator
-        Drag integrator, ``"semi-implicit"`` (Bai & Stone 2010a) or ``"exponential"``.
+        Assignment function ``"ngp"``, ``"cic"``, ``"tsc"``, ``"tsc-c"`` (gather and deposit alike).
     feedback
         Apply the back-reaction of the drag on the gas.
-    acceleration
-        Constant acceleration of every particle (e.g. ``(-2 η v_K Ω, 0, 0)``: the pressure
-        gradient in the particle frame; a settling acceleration along z).
-    vertical_gravity
-        ``-Ω² z`` on the particles.
-    gas_acceleration_z
-        Constant vertical acceleration of the gas (per unit gas mass).
+    particle_terms
+        Accelerations of the particles (:mod:`dustygas.particles.terms`); default: the rotating
+        frame of the gas engine (none without rotation).
+    gas_terms
+        Momentum sources on the gas besides the drag and the grid engine's own terms.
+    boundaries
+        Particle boundary kind per axis (``periodic``, ``shear-periodic``, ``outflow``,
+        ``reflecting``); default: the gas's periodic kinds, ``outflow`` where the gas is open.
+    boundary_keys
+        Names of the configuration entries of ``boundaries``, for error messages.
     cfl
         Particle Courant number (default: the gas's); at most 1.
     drag_cfl
@@ -122,10 +114,9 @@ class ParticleGridEngine:
         Reference gas density of the Epstein law.
     smooth
         Gather and deposit through ``F * W``: the assignment function followed by the
-        grid-scale filter ``F = 1 - δ⁴/16`` (:func:`~dustygas.particles.deposit.filter_lines`),
-        which removes the Nyquist scale and leaves resolved waves alone (``1 - (kΔx)⁴/16``).
-        Without it, particles drifting through the mesh drive an aliasing instability at the
-        grid scale (module docstring).
+        grid-scale filter ``F = 1 - δ⁴/16`` (:func:`~dustygas.particles.deposit.filter_field`).
+    species_names
+        Labels of the species for the history (default ``0, 1, ...``).
     """
 
     work_label = "zone-cycles"
@@ -137,11 +128,11 @@ class ParticleGridEngine:
         t_stop: Sequence[float],
         drag_law: str | Sequence[str] = "fixed",
         kernel: str = "tsc",
-        integrator: str = "semi-implicit",
         feedback: bool = True,
-        acceleration: Sequence[float] = (0.0, 0.0, 0.0),
-        vertical_gravity: bool = False,
-        gas_acceleration_z: float = 0.0,
+        particle_terms: Sequence | None = None,
+        gas_terms: Sequence = (),
+        boundaries: Sequence[str] | None = None,
+        boundary_keys: tuple[str, str, str] = ("particles.boundary_x", "particles.boundary_y", "particles.boundary_z"),
         cfl: float | None = None,
         drag_cfl: float = 0.0,
         mode: Sequence[int] | None = None,
@@ -153,9 +144,9 @@ class ParticleGridEngine:
                              f"not {gas.scheme_names['integrator']}")
         if kernel not in KERNELS:
             raise SetupError(f"particle kernel '{kernel}' unknown: choose one of {', '.join(KERNELS)}")
-        if integrator not in DRAG_INTEGRATORS:
-            raise SetupError(f"drag integrator '{integrator}' unknown: choose one of {', '.join(DRAG_INTEGRATORS)}")
         t_stop = np.atleast_1d(np.asarray(t_stop, dtype=np.float64))
+        if len(t_stop) > MAX_SPECIES:
+            raise SetupError(f"{len(t_stop)} particle species: at most {MAX_SPECIES}")
         laws = [drag_law] * len(t_stop) if isinstance(drag_law, str) else list(drag_law)
         if len(laws) != len(t_stop) or any(law not in DRAG_LAWS for law in laws):
             raise SetupError(f"drag_law must be one of {', '.join(DRAG_LAWS)} per species ({len(t_stop)})")
@@ -167,81 +158,129 @@ class ParticleGridEngine:
         if not 0 < cfl <= 1:
             raise SetupError(f"particle cfl={cfl}: must be in (0, 1] (a particle moves less than a cell per step)")
         geom = gas.geometry
-        for axis, (kind, n) in enumerate(zip(geom.boundaries, geom.shape)):
-            if n > 1 and kind not in ("periodic", "shear-periodic"):
-                raise SetupError(f"particles need periodic or shear-periodic boundaries; the {'xyz'[axis]} axis is "
-                                 f"'{kind}'")
         self.gas = gas
         self.particles = particles
         self.geometry = geom
-        self.kernel, self.integrator = kernel, integrator
+        self.mesh = gas.mesh
+        self.kernel = kernel
         self.feedback = bool(feedback)
         self.smooth = bool(smooth)
         self.cfl = cfl
         self.drag_cfl = float(drag_cfl)
-        q, omega = geom.q, geom.omega
+        active = tuple(n > 1 for n in geom.shape)
+        self._active = np.array(active, dtype=np.bool_)
         relative = geom.velocity_relative_to_shear
-        self._shear_y = 0.0 if relative else q * omega  # v_y + shear_y x: velocity relative to the shear
-        self.forces = Forces(
-            coriolis_x=2.0 * omega,
-            coriolis_y=(2.0 - q) * omega if relative else 2.0 * omega,
-            tidal_x=0.0 if relative else 2.0 * q * omega**2,
-            gravity_z=omega**2 if vertical_gravity else 0.0,
-            ax=float(acceleration[0]), ay=float(acceleration[1]), az=float(acceleration[2]),
-        )
-        self.gas_acceleration_z = float(gas_acceleration_z)
+        if particle_terms is None:
+            particle_terms = [RotatingFrame(geom.omega, geom.q, relative)] if geom.omega != 0.0 else []
+        self.particle_terms = list(particle_terms)
+        self.gas_terms = list(gas_terms)
+        self.forces = force_table(self.particle_terms)
+        if self.forces.gravity_z > 0 and not active[2]:
+            raise SetupError("vertical gravity on the particles needs an active z axis (nz > 1)")
+        self._mesh_term = next((t for t in self.particle_terms if isinstance(t, MeshAcceleration)), None)
+        # species table
         codes = np.array([DRAG_LAWS[law] for law in laws], dtype=np.int64)
         grain = np.where(codes == EPSTEIN, epstein_grain_size(t_stop, 1.0, rho_ref, gas.cs, 1.0), 0.0)
         self.species = Species(codes, t_stop.copy(), np.ascontiguousarray(grain, dtype=np.float64), float(gas.cs))
         self.laws = laws
-        nx, ny, nz = geom.shape
-        gx, gy, gz = geom.nghost
-        self.cells = Cells(nx, ny, nz, gx, gy, gz, *geom.dx, *geom.lower, *geom.box, bool(geom.shear_periodic),
-                           0.0 if relative else geom.shear_velocity_jump, geom.shear_velocity_jump)
+        self.nspecies = len(t_stop)
+        # boundaries: the particles' own kinds, checked against the gas's
+        if boundaries is None:
+            boundaries = tuple(k if k in ("periodic", "shear-periodic") else "outflow" for k in geom.boundaries)
+        q_omega_lx = geom.q * geom.omega * geom.box[0] if geom.shear_periodic else 0.0
+        self.boundary_kinds = tuple(boundaries)
+        self._pb = make_particle_boundaries(tuple(boundaries), geom.boundaries, active, q_omega_lx,
+                                            0.0 if relative else geom.shear_velocity_jump, boundary_keys)
+        # full velocities in a rotating box: the fields the particles gather hold u_y + q Omega x
+        self._shear_rate = geom.q * geom.omega if not relative and geom.omega != 0.0 else 0.0
+        self._field_kinds = field_ghost_kinds(geom.boundaries, active)
+        m = gas.mesh
+        self._lay, self._sp, self._off = m.layout, m.spacing, m.offsets
+        self._remap = gas.remap_codes
+        # kernel, reach and field arrays
         self._order = KERNELS[kernel]
-        self._method = DRAG_INTEGRATORS[integrator]
-        self._axis = slab_axis(geom.shape)
-        self._nslab = geom.shape[self._axis]
-        self._bounds = chunk_bounds(self._nslab, KERNEL_REACH[self._order])
-        ncell = nx * ny * nz
-        self._fields = np.empty((4, ncell))
-        self._work = np.empty((4, ncell))
+        R = KERNEL_REACH[self._order]
+        self._R = R
+        self._reach = np.array([R if a else 0 for a in active], dtype=np.int64)
+        extra = 2 if self.smooth else 0
+        self._gt = tuple(int((R + extra) if a else 0) for a in active)
+        self._g2 = tuple(int(extra if a else 0) for a in active)
+        nx, ny, nz = geom.shape
+        self._ncell = nx * ny * nz
+        self._inv_vol = 1.0 / m.cell_volume
+        ntraj, self._c_rho, self._c_mesh = trajectory_columns(self.nspecies, bool(np.any(codes == EPSTEIN)),
+                                                              self._mesh_term is not None)
+        self._coef = np.zeros((self.nspecies, N_COEF))
+        self._coef_dt = -1.0
+        gx, gy, gz = self._gt
+        self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
+        self._traj_tmp = np.zeros_like(self._traj) if self.smooth else self._traj
+        gx2, gy2, gz2 = self._g2
+        self._dep2 = np.zeros((nz + 2 * gz2, ny + 2 * gy2, nx + 2 * gx2, 3))
+        self._dep2_tmp = np.zeros_like(self._dep2) if self.smooth else self._dep2
+        self._dep1 = np.zeros((nz, ny, nx, 4 * self.nspecies))
+        self._rho_p = np.zeros((nz, ny, nx, self.nspecies))
+        self._mesh_field = np.zeros((3, nz, ny, nx))
         #: the back-reaction source: written by the corrector, used by the next predictor
         self._source = np.zeros((3, nz, ny, nx))
+        self._ext = np.zeros((3, nz, ny, nx))
         self._have_source = False
-        self._starts = np.zeros(self._nslab + 1, dtype=np.int64)
-        self._vmax_work = np.zeros((len(self._bounds) - 1, 3))
-        self._allocate(particles.n)
-        self._use_ext = self.feedback or self.gas_acceleration_z != 0.0
-        self.mode = None if mode is None else tuple(int(m) for m in mode)
+        self._cell_start = np.zeros(self._ncell + 1, dtype=np.int64)
+        self._ptr = np.zeros(self._ncell, dtype=np.int64)
+        nyr, nzr = ny + 2 * self._reach[1], nz + 2 * self._reach[2]
+        self._img_row_start = np.zeros(nyr * nzr + 1, dtype=np.int64)
+        self._budget = np.zeros((PARTICLE_CHUNKS, 3))
+        self._vmax_work = np.zeros((PARTICLE_CHUNKS, 3))
+        #: time integrals: [mass, p_x, p_y, p_z] that left through each face; momentum the
+        #: particle terms gave the particles; momentum the gas terms gave the gas
+        self.lost = np.zeros((6, 4))
+        self.terms_impulse = np.zeros(3)
+        self.gas_terms_impulse = np.zeros(3)
+        self._allocate(max(particles.capacity, 1))
+        self._images = 0
+        self.mode = None if mode is None else tuple(int(x) for x in mode)
         self._mode_setup()
-        self._resort()
-        self.work_units = ncell
+        self._check_inside()
+        self._vmax = np.max(np.abs(particles.vel), axis=1) if particles.n else np.zeros(3)
+        self.work_units = self._ncell
 
     # ------------------------------------------------------------------ set-up helpers
-    def _allocate(self, n: int) -> None:
-        self._keys = np.zeros(n, dtype=np.int64)
-        self._order_work = np.zeros(n, dtype=np.int64)
+    def _allocate(self, capacity: int) -> None:
+        W = 2 * self._R + 1
+        self._keys = np.zeros(capacity, dtype=np.int64)
+        self._order_work = np.zeros(capacity, dtype=np.int64)
+        self._fwork = np.zeros((7, capacity))
+        self._iwork = np.zeros((3, capacity), dtype=np.int64)
+        self._wts = np.zeros((capacity, 3, W))
+        self._values = np.zeros((capacity, 4))
+        self._cols = np.zeros(capacity, dtype=np.int64)
+        self._zero_cols = np.zeros(capacity, dtype=np.int64)
+        self._leaving = np.zeros(capacity, dtype=np.int64)
+        self._capacity = capacity
+        self._img_capacity = 0
+        self._grow_images(max(16, capacity // 4))
 
-    def _resort(self) -> None:
-        """Sort by cell, recompute the slab starts and the largest speeds."""
-        p = self.particles
-        self._wrap_all()
-        cell_keys(p.pos, self.cells, self._axis, self._keys)
-        counting_sort(self._keys, self.cells.nx * self.cells.ny * self.cells.nz, p.pos, p.vel, p.species, p.pid,
-                      p.mass, self._order_work)
-        ncell = self.cells.nx * self.cells.ny * self.cells.nz
-        slab_starts(self._keys, ncell // self._nslab, self._nslab, self._starts)
-        self._vmax = np.max(np.abs(p.vel), axis=1) if p.n else np.zeros(3)
+    def _grow_images(self, m: int) -> None:
+        if m <= self._img_capacity:
+            return
+        W = 2 * self._R + 1
+        m = max(m, 2 * self._img_capacity)
+        self._img_src = np.zeros(m, dtype=np.int64)
+        self._img_cell = np.zeros((m, 3), dtype=np.int64)
+        self._img_w = np.zeros((m, 3, W))
+        self._img_dvy = np.zeros(m)
+        self._img_val = np.zeros((m, 4))
+        self._img_col = np.zeros(m, dtype=np.int64)
+        self._img_capacity = m
 
-    def _wrap_all(self) -> None:
-        """Check that every particle is inside the box (set-up and restart)."""
+    def _check_inside(self) -> None:
+        """Every particle inside the box (set-up and restart)."""
         pos = self.particles.pos
         for axis in range(3):
-            if self.geometry.shape[axis] == 1:
+            if self.geometry.shape[axis] == 1 or not pos.shape[1]:
                 continue
             lo, length = self.geometry.lower[axis], self.geometry.box[axis]
-            if pos.shape[1] and (pos[axis].min() < lo or pos[axis].max() >= lo + length):
+            if pos[axis].min() < lo or pos[axis].max() >= lo + length:
                 raise SetupError(f"particle positions along {'xyz'[axis]} must lie in [{lo:g}, {lo + length:g})")
 
     def _mode_setup(self) -> None:
@@ -252,20 +291,12 @@ class ParticleGridEngine:
         if not np.any(k):
             raise SetupError(f"mode {self.mode}: give a non-zero mode number along an active axis")
         self._k = k
-        m = self.gas.mesh
-        x, y, z = m.meshgrid()
-        self._phase = np.exp(-1j * (k[0] * x + k[1] * y + k[2] * z)) * np.ones(tuple(reversed(m.shape)))
-        self._cell_factor = float(np.prod([np.sinc(kd * d / (2 * np.pi)) for kd, d in zip(k, geom.dx)]))
+        x, y, z = self.mesh.meshgrid()
+        self._phase = np.exp(-1j * (k[0] * x + k[1] * y + k[2] * z)) * np.ones(tuple(reversed(self.mesh.shape)))
+        self._cell_factor = cell_average_factor(k, geom.dx)
         self._xc = x
 
-    def _init_source(self, u: np.ndarray) -> None:
-        """The source without feedback: the constant acceleration of the gas, ``rho gas_az``."""
-        c = self.cells
-        rho = u[0, c.gz:c.gz + c.nz, c.gy:c.gy + c.ny, c.gx:c.gx + c.nx]
-        self._source[:2] = 0.0
-        self._source[2] = rho * self.gas_acceleration_z
-
-    # ------------------------------------------------------------------ time and stepping
+    # ------------------------------------------------------------------ time
     @property
     def t(self) -> float:
         return self.gas.t
@@ -285,9 +316,8 @@ class ParticleGridEngine:
     def timestep(self) -> float:
         """Smallest of the gas Courant step, the particle Courant step and the drag limit."""
         dt = self.gas.timestep()
-        c = self.cells
         rate = 0.0
-        for n, d, v in zip((c.nx, c.ny, c.nz), (c.dx, c.dy, c.dz), self._vmax):
+        for n, d, v in zip(self.geometry.shape, self.geometry.dx, self._vmax):
             if n > 1:
                 rate = max(rate, v / d)
         if rate > 0:
@@ -298,31 +328,156 @@ class ParticleGridEngine:
                 dt = min(dt, self.drag_cfl * float(fixed.min()))
         return dt
 
+    # ------------------------------------------------------------------ the passes
+    def _exchange(self, t: float) -> None:
+        """The exchange step at time ``t`` (particle boundaries; removes outflowing particles)."""
+        p = self.particles
+        pos, vel, species, pid, mass = p.buffers()
+        shift = self.geometry.shear_offset(t)
+        count = apply_boundaries(pos, vel, p.n, self._lay, self._sp, self._pb, shift, self._leaving)
+        if count:
+            flags = self._leaving[:p.n]
+            for face in range(6):
+                sel = flags == face + 1
+                if np.any(sel):
+                    m = p.mass[sel]
+                    self.lost[face, 0] += float(m.sum())
+                    self.lost[face, 1:] += p.vel[:, sel] @ m
+            p.remove(flags == 0)
+
+    def _prepare(self, t: float) -> None:
+        """Sort, weights and image records of the particles as they are (positions at ``t``)."""
+        p = self.particles
+        if p.capacity > self._capacity:
+            self._allocate(p.capacity)
+        pos, vel, species, pid, mass = p.buffers()
+        n = p.n
+        sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys, self._order_work,
+                     self._ptr, self._cell_start, self._fwork, self._iwork)
+        stencil(pos, n, self._lay, self._sp, self._off, self._order, self._R, self._wts)
+        shift = self.geometry.shear_offset(t)
+        args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
+                self._cell_start)
+        while True:
+            m = build_images(*args, self._img_src, self._img_cell, self._img_w, self._img_dvy)
+            if m <= self._img_capacity:
+                break
+            self._grow_images(m)
+        sort_images(m, self._lay, self._reach, pid, self._img_src, self._img_cell, self._img_w, self._img_dvy,
+                    self._img_row_start)
+        self._images = m
+
+    def _deposit(self, out, g, values, cols, vy_col: int, mass_col: int) -> None:
+        """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``."""
+        m = self._images
+        nv = values.shape[1]
+        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv])
+        img_col = self._img_col
+        img_col[:m] = cols[self._img_src[:m]]
+        pull_deposit(out, np.array(g, dtype=np.int64), self._lay, self._reach, self._R, self._cell_start, self._keys,
+                     self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
+                     self._img_val[:, :nv], img_col)
+
+    def _fill_and_filter(self, field, tmp, g, t: float, rows: tuple[int, int]) -> None:
+        """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
+        (with the ghost rows beyond them where they reach a z face)."""
+        shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
+        nz, gz = self.geometry.shape[2], g[2]
+        k_lo = rows[0] + gz if rows[0] > 0 else 0
+        k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
+        fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
+        if self.smooth:
+            filter_field(field, tmp, self._active, k_lo, k_hi)
+
+    def _step_coefficients(self, h: float) -> None:
+        if h != self._coef_dt:
+            for s in range(self.nspecies):
+                if self.species.law[s] == FIXED:
+                    step_coefficients(float(self.species.t_stop[s]), self.forces.gravity_z, h, self._coef[s])
+            self._coef_dt = h
+
+    def _gas_terms(self, state: np.ndarray, t: float, out: np.ndarray) -> None:
+        if self.gas_terms:
+            rho = state[(0,) + self.mesh.interior()]
+            for term in self.gas_terms:
+                term.add_source(self, rho, t, out)
+
     def advance(self, dt: float) -> None:
-        """One coupled step (module docstring): two particle stages, two gas stages."""
-        gas, p, c = self.gas, self.particles, self.cells
-        geom = self.geometry
+        """One coupled step (module docstring)."""
+        gas, p = self.gas, self.particles
+        h = dt
         t = gas.t
-        s0, s_half, s1 = geom.shear_offset(t), geom.shear_offset(t + 0.5 * dt), geom.shear_offset(t + dt)
-        src = self._source
-        args = (p.pos, p.vel, p.species, p.pid, p.mass)
-        explicit = self.feedback and not self._have_source  # the first step: S^0 from the drag at t^0
-        particle_stage(PREDICT, *args, gas.stage_input(0), c, self._order, self.species, self.forces, self._method,
-                       explicit, self.gas_acceleration_z, dt, s0, s_half, self._fields, src.reshape(3, -1),
-                       self._starts, self._bounds, self._keys, self._axis, self._order_work, self._vmax_work,
-                       self.smooth, self._work)
-        if self._use_ext and not self._have_source and not explicit:  # no feedback: only rho gas_az
-            self._init_source(gas.stage_input(0))
-        gas.advance_stage(0, dt, src if self._use_ext else None)
-        vx, vy, vz, _ = particle_stage(CORRECT, *args, gas.stage_input(1), c, self._order, self.species, self.forces,
-                                       self._method, self.feedback, self.gas_acceleration_z, dt, s_half, s1,
-                                       self._fields, src.reshape(3, -1), self._starts, self._bounds, self._keys,
-                                       self._axis, self._order_work, self._vmax_work, self.smooth, self._work)
-        self._have_source = True
-        self._vmax = (vx, vy, vz)
-        gas.advance_stage(1, dt, src if self._use_ext else None)
+        pos, vel, species, pid, mass = p.buffers()
+        # 1. drift, exchange, sort, weights, images at x^{n+1/2}
+        drift(pos, vel, p.n, 0.5 * h, self._active)
+        self._exchange(t + 0.5 * h)
+        self._prepare(t + 0.5 * h)
+        pos, vel, species, pid, mass = p.buffers()
+        n = p.n
+        # 2. the dust deposit of the local drag problem
+        if self.feedback:
+            dust_values(vel, species, mass, n, self._inv_vol, True, self._values, self._cols)
+            self._dep1[...] = 0.0
+            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, 2, 0)
+        # 3. gas predictor
+        u_old = gas.stage_input(0)
+        use_ext = self.feedback or bool(self.gas_terms)
+        if use_ext:
+            ext = self._ext
+            ext[...] = self._source if self.feedback else 0.0
+            self._gas_terms(u_old, t, ext)
+        gas.advance_stage(0, h, ext if use_ext else None)
+        u_half = gas.stage_input(1)
+        t_half = t + 0.5 * h
+        # 4. the trajectory field
+        if self._mesh_term is not None:
+            self._mesh_term.update(self, u_half[(0,) + self.mesh.interior()], t_half)
+            self._mesh_field[...] = self._mesh_term.field
+        pred_dt = gas.stage_weight(0) * h
+        nx, ny, nz = self.geometry.shape
+        margin = self._R + (2 if self.smooth else 0)
+        rows = occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
+        cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
+                          self.nspecies, self.species, self.forces, self._mesh_field, self._shear_rate, self.feedback,
+                          self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
+        self._fill_and_filter(self._traj, self._traj_tmp, self._gt, t_half, rows)
+        # 5. particles: gather, update, their drag source, second half drift
+        self._step_coefficients(h)
+        kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
+             self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self.forces, self._shear_rate,
+             h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
+        self.terms_impulse += self._budget.sum(axis=0)
+        self._vmax = self._vmax_work.max(axis=0)
+        if self.feedback:
+            self._dep2[...] = 0.0
+            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
+            self._fill_and_filter(self._dep2, self._dep2_tmp, self._g2, t_half, rows)
+            copy_domain(self._dep2, np.array(self._g2, dtype=np.int64), self._source, 1.0)
+            self._have_source = True
+        # 6. gas corrector
+        if use_ext:
+            ext = self._ext
+            ext[...] = self._source if self.feedback else 0.0
+            before = ext.sum(axis=(1, 2, 3)) if self.gas_terms else None
+            self._gas_terms(u_half, t_half, ext)
+            if self.gas_terms:
+                self.gas_terms_impulse += (ext.sum(axis=(1, 2, 3)) - before) * h * self.mesh.cell_volume
+        gas.advance_stage(1, h, ext if use_ext else None)
+        self._exchange(t + h)
 
     # ------------------------------------------------------------------ outputs
+    def dust_density(self, per_species: bool = False) -> np.ndarray:
+        """Particle mass density on the mesh ``(nz, ny, nx)`` (or ``(nspecies, nz, ny, nx)``)
+        with the run's kernel (without the grid-scale filter), at the current positions."""
+        p = self.particles
+        self._prepare(self.t)
+        pos, vel, species, pid, mass = p.buffers()
+        dust_values(vel, species, mass, p.n, self._inv_vol, False, self._values, self._cols)
+        self._rho_p[...] = 0.0
+        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._cols, -1, 0)
+        rho = np.moveaxis(self._rho_p, -1, 0).copy()
+        return rho if per_species else rho.sum(axis=0)
+
     def particle_momentum(self) -> np.ndarray:
         """``Σ m v`` of the particles with the full azimuthal velocity (3,)."""
         p = self.particles
@@ -338,7 +493,8 @@ class ParticleGridEngine:
         gas = gas_mode(rho, (vx, vy + qo * self._xc, vz), self._phase, self._cell_factor)
         dust = np.empty(4, dtype=np.complex128)
         p = self.particles
-        particle_mode(p.pos, p.vel, p.mass, self._k[0], self._k[1], self._k[2], self._shear_y, dust)
+        shear_y = 0.0 if self.geometry.velocity_relative_to_shear else qo
+        particle_mode(p.pos, p.vel, p.mass, self._k[0], self._k[1], self._k[2], shear_y, dust)
         return np.concatenate([gas, dust])
 
     def history(self) -> dict[str, float]:
@@ -349,22 +505,33 @@ class ParticleGridEngine:
         for a, name in enumerate("xyz"):
             out[f"particle_momentum_{name}"] = float(pm[a])
             out[f"total_momentum_{name}"] = out[f"momentum_{name}"] + float(pm[a])
+            out[f"particle_terms_impulse_{name}"] = float(self.terms_impulse[a])
+            if self.gas_terms:
+                out[f"gas_terms_impulse_{name}"] = float(self.gas_terms_impulse[a])
+        if any(k in ("outflow",) for k in self.boundary_kinds):
+            for face, name in enumerate(FACES):
+                out[f"particle_mass_lost_{name}"] = float(self.lost[face, 0])
+            out["particle_mass_lost"] = float(self.lost[:, 0].sum())
+            for a, name in enumerate("xyz"):
+                out[f"particle_momentum_lost_{name}"] = float(self.lost[:, 1 + a].sum())
+        if self.forces.gravity_z > 0 or self.nspecies > 1 or self.geometry.shape[2] > 1:
+            shear_y = 0.0 if self.geometry.velocity_relative_to_shear else self.geometry.q * self.geometry.omega
+            stats = species_statistics(p.pos, p.vel, p.mass, p.species, self.nspecies, shear_y)
+            for s in range(self.nspecies):
+                for key, value in stats[s].items():
+                    out[f"species_{s}_{key}"] = value
+            rho_p = self.dust_density()
+            out["rho_p_max"] = float(rho_p.max())
         if self.mode is not None:
             for name, value in zip(MODE_FIELDS, self.mode_amplitudes()):
                 out[f"mode_{name}_re"] = float(value.real)
                 out[f"mode_{name}_im"] = float(value.imag)
         return out
 
-    def dust_density(self) -> np.ndarray:
-        """Particle mass density on the mesh ``(nz, ny, nx)`` with the run's kernel."""
-        c = self.cells
-        out = deposit_density(self.particles.pos, self.particles.mass, c, self._order, self.geometry.shear_offset(self.t))
-        return out.reshape(c.nz, c.ny, c.nx)
-
     def _attrs(self) -> dict[str, Any]:
-        attrs = {"particle_kernel": self.kernel, "drag_integrator": self.integrator, "feedback": self.feedback,
-                 "particle_smoothing": self.smooth,
-                 "t_stop": self.species.t_stop.tolist(), "drag_law": list(self.laws)}
+        attrs = {"particle_kernel": self.kernel, "feedback": self.feedback, "particle_smoothing": self.smooth,
+                 "t_stop": self.species.t_stop.tolist(), "drag_law": list(self.laws), "nspecies": self.nspecies,
+                 "particle_boundaries": list(self.boundary_kinds)}
         if self.mode is not None:
             attrs["mode"] = list(self.mode)
             attrs["mode_k"] = self._k.tolist()
@@ -372,7 +539,10 @@ class ParticleGridEngine:
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         arrays, attrs = self.gas.snapshot()
-        arrays["rho_p"] = self.dust_density()
+        rho_s = self.dust_density(per_species=True)
+        arrays["rho_p"] = rho_s.sum(axis=0)
+        if self.nspecies > 1:
+            arrays["rho_p_species"] = rho_s
         for name, value in self.particles.arrays().items():
             arrays[f"particles/{name}"] = value
         return arrays, {**attrs, **self._attrs()}
@@ -383,6 +553,8 @@ class ParticleGridEngine:
             arrays[f"particles/{name}"] = value
         if self._have_source:
             arrays["particles/gas_source"] = self._source.copy()
+        arrays["particles/lost"] = self.lost.copy()
+        arrays["particles/terms_impulse"] = np.concatenate([self.terms_impulse, self.gas_terms_impulse])
         return arrays, attrs
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
@@ -392,8 +564,60 @@ class ParticleGridEngine:
         except KeyError as exc:
             raise UserError(f"checkpoint has no particle array {exc}") from None
         self.particles = ParticleStore(**parts)
-        self._allocate(self.particles.n)
-        self._resort()
+        self._allocate(self.particles.capacity)
+        self._check_inside()
+        self._vmax = np.max(np.abs(self.particles.vel), axis=1) if self.particles.n else np.zeros(3)
         self._have_source = "particles/gas_source" in arrays
         if self._have_source:
             self._source[...] = arrays["particles/gas_source"]
+        if "particles/lost" in arrays:
+            self.lost[...] = arrays["particles/lost"]
+            imp = np.asarray(arrays["particles/terms_impulse"])
+            self.terms_impulse[...] = imp[:3]
+            self.gas_terms_impulse[...] = imp[3:]
+
+
+def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
+                    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic")) -> np.ndarray:
+    """Mass density ``(nz, ny, nx)`` of particles at ``pos`` (3, N) on ``mesh`` with ``kernel``
+    (no shear; for set-ups and tests: the deposit the engine uses, without a gas engine)."""
+    from ..grid.mesh import Mesh  # noqa: F401  (type only)
+
+    pos = np.asarray(pos, dtype=np.float64)
+    n = pos.shape[1]
+    store = ParticleStore.create(pos, np.zeros((3, n)), 0, mass)
+    active = tuple(s > 1 for s in mesh.shape)
+    gas_kinds = tuple("periodic" if b == "periodic" else "outflow" for b in boundaries)
+    pb = make_particle_boundaries(tuple(boundaries), gas_kinds, active, 0.0, 0.0)
+    order = KERNELS[kernel]
+    R = KERNEL_REACH[order]
+    reach = np.array([R if a else 0 for a in active], dtype=np.int64)
+    lay, sp, off = mesh.layout, mesh.spacing, mesh.offsets
+    nx, ny, nz = mesh.shape
+    ncell = nx * ny * nz
+    keys = np.zeros(n, dtype=np.int64)
+    cell_start = np.zeros(ncell + 1, dtype=np.int64)
+    p_, v_, s_, i_, m_ = store.buffers()
+    sort_by_cell(p_, v_, s_, i_, m_, n, lay, sp, off, keys, np.zeros(n, dtype=np.int64), np.zeros(ncell, dtype=np.int64),
+                 cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
+    wts = np.zeros((n, 3, 2 * R + 1))
+    stencil(p_, n, lay, sp, off, order, R, wts)
+    args = (n, lay, sp, pb, reach, order, 0.0, keys, wts, p_, cell_start)
+    cap = max(16, n // 2)
+    while True:
+        img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)
+        img_w, img_dvy = np.zeros((cap, 3, 2 * R + 1)), np.zeros(cap)
+        m = build_images(*args, img_src, img_cell, img_w, img_dvy)
+        if m <= cap:
+            break
+        cap = 2 * m
+    row_start = np.zeros((ny + 2 * reach[1]) * (nz + 2 * reach[2]) + 1, dtype=np.int64)
+    sort_images(m, lay, reach, i_, img_src, img_cell, img_w, img_dvy, row_start)
+    values = (m_[:n] / mesh.cell_volume).reshape(n, 1).copy()
+    cols = np.zeros(n, dtype=np.int64)
+    img_val = np.zeros((max(m, 1), 1))
+    image_values(m, img_src, img_dvy, values, -1, 0, img_val)
+    out = np.zeros((nz, ny, nx, 1))
+    pull_deposit(out, np.zeros(3, dtype=np.int64), lay, reach, R, cell_start, keys, wts, values, cols, row_start,
+                 img_cell, img_w, img_val, np.zeros(max(m, 1), dtype=np.int64))
+    return out[..., 0]

@@ -1,134 +1,235 @@
-"""Gather from the gas and deposit onto it, race-free and deterministic on several threads.
+"""Deposits onto the mesh: race-free, independent of the thread count and of the block split.
 
-Gather (thesis eq. 4.22): each stage first turns the conserved gas state into the fields
-``(rho, u_x, u_y, u_z)`` of the domain cells (:func:`gas_fields`, one pass over the mesh);
-a particle then interpolates them with its stencil (the particle loop of
-:mod:`dustygas.particles.push`).
+Deposit (thesis eq. 4.24): a particle adds ``W_a q`` to each cell ``a`` of its stencil, ``q``
+being what it carries (its mass and momentum per unit volume, or the momentum per unit
+volume and time it gives the gas). The stencil weights sum to one, so the mesh receives
+exactly what the particles carry (eq. 4.25) up to the round-off of the sums.
 
-Deposit (thesis eq. 4.24): a particle adds ``W_a f / V_cell`` to the momentum source of each
-cell ``a`` of its stencil, ``f`` being the momentum per unit time it gives
-the gas. The stencil weights sum to one, so the gas receives exactly what the particles lose
-(eq. 4.25) up to the round-off of the sums.
+Every deposit here is a *pull*: each domain cell collects the contributions of the particles
+whose stencil covers it (:func:`pull_deposit`), in a fixed order -- the source row offsets
+``(dk, dj)`` in turn, then the records of the source row in canonical order (by cell, then by
+particle id; :mod:`dustygas.particles.store`), the image records beyond the faces
+(:func:`~dustygas.particles.boundaries.build_images`) taking their place in that order. No two
+threads write the same cell, and a cell's sum is the same whatever the number of threads and
+whatever the split of the box into blocks (a neighbour's particles would be image records in
+the same places). Rows are handed to threads with the z index varying fastest, so the work of
+a thin dust layer at the midplane is split along y.
 
-Threads without races, results without dependence on the thread count
------------------------------------------------------------------------
-The particles are sorted by slab (:mod:`dustygas.particles.store`); the slabs are grouped into
-an even number of *chunks* of at least four slabs (six for the five-cell compensated TSC;
-:func:`chunk_bounds`). During a stage a particle moves by less than one cell along the slab
-axis, and its stencil reaches one (two) cells further, so a chunk deposits only into its own
-slabs and two (three) slabs on either side. Chunks
-0, 2, 4, ... therefore write disjoint cells and run in parallel; then chunks 1, 3, 5, ...
-Within a chunk the particles are processed in their (sorted) order, and every cell receives
-its contributions chunk by chunk in a fixed order, so the deposited field is the same for any
-number of threads -- bit for bit.
+The grid-scale filter ``F = 1 - δ⁴/16`` (:func:`filter_field`) acts on padded fields, so that
+the particles gather and deposit through the kernel ``F * W``.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
+__all__ = ["sort_images", "image_values", "pull_deposit", "filter_field", "ROW_CHUNKS"]
 
-__all__ = ["chunk_bounds", "gas_fields", "filter_lines"]
-
-def chunk_bounds(nslab: int, reach: int = 1) -> np.ndarray:
-    """Slab boundaries ``b[0] = 0 < b[1] < ... < b[m] = nslab`` of ``m`` chunks.
-
-    A particle moves by less than one cell per stage and its stencil reaches ``reach`` cells
-    on either side of its own, so a chunk writes into its own slabs and ``1 + reach`` more on
-    each side: chunks of at least ``2 (1 + reach)`` slabs make chunks two apart disjoint. ``m``
-    is even, or 1 if there are too few slabs for two chunks (the deposit then runs on one
-    thread).
-
-    >>> chunk_bounds(64)[:4], len(chunk_bounds(64)) - 1
-    (array([ 0,  4,  8, 12]), 16)
-    >>> chunk_bounds(10), chunk_bounds(7), len(chunk_bounds(64, reach=2)) - 1
-    (array([ 0,  5, 10]), array([0, 7]), 10)
-    """
-    m = nslab // (2 * (1 + reach))
-    m -= m % 2
-    if m < 2:
-        return np.array([0, nslab], dtype=np.int64)
-    return np.array([c * nslab // m for c in range(m + 1)], dtype=np.int64)
+#: rows are split into this many chunks for the threads (more than threads: a balanced split)
+ROW_CHUNKS = 64
 
 
 @njit(cache=True, error_model="numpy")
-def gas_fields(u, cells, gas_az, fields, ext, init_ext, r0, r1) -> None:
-    """Rows ``r0 .. r1-1`` (row ``r = k ny + j``) of the gas fields and of the source.
-
-    ``u`` is the conserved state ``(4, NZ, NY, NX)`` with ghost zones; ``fields`` ``(4, ncell)``
-    receives ``rho, u_x, u_y, u_z`` of the domain cells (flat index ``(k ny + j) nx + i``). If
-    ``init_ext``, ``ext`` ``(3, ncell)`` is set to ``(0, 0, rho gas_az)``: the constant vertical
-    acceleration of the gas (zero unless a problem balances a settling drift with it).
-    """
-    nx, ny = cells.nx, cells.ny
-    for r in range(r0, r1):
-        j = r % ny
-        k = r // ny
-        d = u[0, k + cells.gz, j + cells.gy, cells.gx:cells.gx + nx]
-        mx = u[1, k + cells.gz, j + cells.gy, cells.gx:cells.gx + nx]
-        my = u[2, k + cells.gz, j + cells.gy, cells.gx:cells.gx + nx]
-        mz = u[3, k + cells.gz, j + cells.gy, cells.gx:cells.gx + nx]
-        base = r * nx
-        f0 = fields[0, base:base + nx]
-        f1 = fields[1, base:base + nx]
-        f2 = fields[2, base:base + nx]
-        f3 = fields[3, base:base + nx]
-        for i in range(nx):
-            rho = d[i]
-            inv = 1.0 / rho
-            f0[i] = rho
-            f1[i] = mx[i] * inv
-            f2[i] = my[i] * inv
-            f3[i] = mz[i] * inv
-        if init_ext:
-            e0 = ext[0, base:base + nx]
-            e1 = ext[1, base:base + nx]
-            e2 = ext[2, base:base + nx]
-            for i in range(nx):
-                e0[i] = 0.0
-                e1[i] = 0.0
-                e2[i] = gas_az * d[i]
+def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row_start) -> None:
+    """Order the image records by padded row ``(J, K)``, then cell ``I``, then particle id, and
+    fill ``row_start`` (``(ny + 2 R_y)(nz + 2 R_z) + 1`` entries) with each row's first record."""
+    ry, rz = reach[1], reach[2]
+    nyr = lay.ny + 2 * ry
+    nrow = row_start.shape[0] - 1
+    for r in range(nrow + 1):
+        row_start[r] = 0
+    if m_total == 0:
+        return
+    rows = np.empty(m_total, dtype=np.int64)
+    for m in range(m_total):
+        rows[m] = (img_cell[m, 2] + rz) * nyr + img_cell[m, 1] + ry
+        row_start[rows[m] + 1] += 1
+    for r in range(nrow):
+        row_start[r + 1] += row_start[r]
+    ptr = row_start[:nrow].copy()
+    order = np.empty(m_total, dtype=np.int64)
+    for m in range(m_total):
+        order[ptr[rows[m]]] = m
+        ptr[rows[m]] += 1
+    for r in range(nrow):  # within a row by (I, pid): few records per row
+        a, b = row_start[r], row_start[r + 1]
+        for q in range(a + 1, b):
+            v = order[q]
+            ki, kp = img_cell[v, 0], pid[img_src[v]]
+            s = q - 1
+            while s >= a and (img_cell[order[s], 0] > ki or (img_cell[order[s], 0] == ki and pid[img_src[order[s]]] > kp)):
+                order[s + 1] = order[s]
+                s -= 1
+            order[s + 1] = v
+    done = True
+    for m in range(m_total):
+        if order[m] != m:
+            done = False
+            break
+    if done:  # already in order (the common case: the images are written row by row)
+        return
+    src = img_src[:m_total].copy()
+    cell = img_cell[:m_total].copy()
+    w = img_w[:m_total].copy()
+    dvy = img_dvy[:m_total].copy()
+    for m in range(m_total):
+        o = order[m]
+        img_src[m] = src[o]
+        img_dvy[m] = dvy[o]
+        for a in range(3):
+            img_cell[m, a] = cell[o, a]
+        for a in range(w.shape[1]):
+            for s in range(w.shape[2]):
+                img_w[m, a, s] = w[o, a, s]
 
 
 @njit(cache=True, error_model="numpy")
-def filter_lines(src, dst, nvar, axis, cells, y_cells, l0, l1) -> None:
-    """The grid-scale filter ``F = 1 - δ⁴/16`` along ``axis`` for lines ``l0 .. l1-1``.
+def image_values(m_total, img_src, img_dvy, values, vy_col, mass_col, out) -> None:
+    """``out[m] = values[img_src[m]]``, plus ``img_dvy[m] values[., mass_col]`` in column ``vy_col``
+    (the azimuthal momentum of a shear-periodic image; ``vy_col < 0``: none)."""
+    nv = values.shape[1]
+    for m in range(m_total):
+        p = img_src[m]
+        for c in range(nv):
+            out[m, c] = values[p, c]
+        if vy_col >= 0:
+            out[m, vy_col] += img_dvy[m] * values[p, mass_col]
 
-    ``src``, ``dst`` are ``(nvar, ncell)`` domain fields (flat index ``(k ny + j) nx + i``);
-    a line is every cell with the same two other indices. ``F`` is
-    ``(-a_{i-2} + 4 a_{i-1} + 10 a_i + 4 a_{i+1} - a_{i+2})/16``: its transfer function is
-    ``1 - sin⁴(θ/2)`` (θ = k Δx), zero at the grid's Nyquist wavenumber and ``1 - θ⁴/16`` for
-    resolved waves; it is symmetric and keeps the sum of a field. Lines wrap periodically; in
-    a shear-periodic box with an active y axis the x-lines continue across the radial
-    boundary ``y_cells`` (the shear offset rounded to whole cells) further along y.
+
+@njit(cache=True, error_model="numpy")
+def _add_record(acc, I, wx, wyz, rx, R, nx, val, col, nv):
+    for di in range(-rx, rx + 1):
+        i = I + di
+        if 0 <= i < nx:
+            w = wyz * wx[R + di]
+            if w != 0.0:
+                for c in range(nv):
+                    acc[i, col + c] += w * val[c]
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_val,
+                 img_col) -> None:
+    """Add to the domain cells of ``out`` ``(NZ, NY, NX, nv_out)`` (``g = (gx, gy, gz)`` ghost layers,
+    which are left alone) the deposit of the sorted particles and their image records (module docstring).
+
+    Parameters
+    ----------
+    reach, R
+        Cells the stencil reaches per axis (0 if inactive) and the kernel's reach (the weights
+        of a record are ``w[axis, R + offset]``).
+    cell_start, keys, wts
+        The particles' canonical order, cells and weights ``(N, 3, 2R + 1)``.
+    values, col
+        ``(N, nv)`` what each particle deposits, into columns ``col[p] .. col[p] + nv - 1``.
+    img_row_start, img_cell, img_w, img_val, img_col
+        The image records, sorted by :func:`sort_images`, with their values and columns.
     """
-    nx, ny, nz = cells.nx, cells.ny, cells.nz
-    n = nx if axis == 0 else (ny if axis == 1 else nz)
-    stride = 1 if axis == 0 else (nx if axis == 1 else nx * ny)
-    shear = axis == 0 and cells.shear and ny > 1
-    for line in range(l0, l1):
+    nx, ny, nz = lay.nx, lay.ny, lay.nz
+    rx, ry, rz = reach[0], reach[1], reach[2]
+    gx, gy, gz = g[0], g[1], g[2]
+    nyr = ny + 2 * ry
+    nv = values.shape[1]
+    nrows = ny * nz
+    nchunk = min(nrows, ROW_CHUNKS)
+    for chunk in prange(nchunk):
+        for r in range(chunk * nrows // nchunk, (chunk + 1) * nrows // nchunk):
+            k = r % nz  # z fastest: a thread's rows span the layer, it splits along y
+            j = r // nz
+            acc = out[k + gz, j + gy, gx:gx + nx]
+            for dk in range(-rz, rz + 1):
+                K = k + dk
+                sz = R - dk
+                for dj in range(-ry, ry + 1):
+                    J = j + dj
+                    sy = R - dj
+                    prow = (K + rz) * nyr + J + ry
+                    m = img_row_start[prow]
+                    mend = img_row_start[prow + 1]
+                    while m < mend and img_cell[m, 0] < 0:  # images beyond the lower x face first
+                        wyz = img_w[m, 1, sy] * img_w[m, 2, sz]
+                        if wyz != 0.0:
+                            _add_record(acc, img_cell[m, 0], img_w[m, 0], wyz, rx, R, nx, img_val[m], img_col[m], nv)
+                        m += 1
+                    if 0 <= J < ny and 0 <= K < nz:
+                        c0 = (K * ny + J) * nx
+                        for p in range(cell_start[c0], cell_start[c0 + nx]):
+                            wyz = wts[p, 1, sy] * wts[p, 2, sz]
+                            if wyz != 0.0:
+                                _add_record(acc, keys[p] - c0, wts[p, 0], wyz, rx, R, nx, values[p], col[p], nv)
+                    while m < mend:
+                        wyz = img_w[m, 1, sy] * img_w[m, 2, sz]
+                        if wyz != 0.0:
+                            _add_record(acc, img_cell[m, 0], img_w[m, 0], wyz, rx, R, nx, img_val[m], img_col[m], nv)
+                        m += 1
+
+
+@njit(cache=True, error_model="numpy")
+def _filter_line(src, dst, axis, a, b, lo, hi):
+    """``dst = F src`` along ``axis`` on the line ``(a, b)`` (the other two indices) for cells ``lo .. hi-1``."""
+    nv = src.shape[3]
+    if axis == 0:
+        s = src[a, b]
+        d = dst[a, b]
+        for m in range(lo, hi):
+            for c in range(nv):
+                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+    elif axis == 1:
+        s = src[a, :, b]
+        d = dst[a, :, b]
+        for m in range(lo, hi):
+            for c in range(nv):
+                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+    else:
+        s = src[:, a, b]
+        d = dst[:, a, b]
+        for m in range(lo, hi):
+            for c in range(nv):
+                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+
+
+@njit(cache=True, error_model="numpy")
+def _copy_line(src, dst, axis, a, b, lo, hi):
+    if axis == 0:
+        dst[a, b, lo:hi] = src[a, b, lo:hi]
+    elif axis == 1:
+        dst[a, lo:hi, b] = src[a, lo:hi, b]
+    else:
+        dst[lo:hi, a, b] = src[lo:hi, a, b]
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def filter_field(f, tmp, active, k_lo, k_hi) -> None:
+    """The grid-scale filter ``F = 1 - δ⁴/16`` along every active axis of the padded field ``f``
+    ``(NZ, NY, NX, nv)`` in place (``tmp`` the same shape): per axis
+    ``(-a_{i-2} + 4 a_{i-1} + 10 a_i + 4 a_{i+1} - a_{i+2})/16``, whose transfer function
+    ``1 - sin⁴(θ/2)`` (θ = k Δx) vanishes at the Nyquist scale and is ``1 - θ⁴/16`` for
+    resolved waves; it is symmetric and keeps the sum of a field over a periodic line (or one
+    with mirror ghosts). Each pass needs two filled ghost layers and leaves the outermost two
+    of its axis unfiltered: with ``R + 2`` ghost layers the filtered field is valid ``R``
+    cells beyond the domain.
+
+    Only the padded z rows ``k_lo .. k_hi-1`` are filtered along x and y, and along z the rows
+    ``k_lo + 2 .. k_hi - 3`` (the rest of the field is not needed: a thin dust layer).
+    """
+    NZ, NY, NX, nv = f.shape
+    for axis in range(3):
+        if not active[axis]:
+            continue
         if axis == 0:
-            j, k = line % ny, line // ny
-            base = (k * ny + j) * nx
+            na, nb, lo, hi = k_hi - k_lo, NY, 2, NX - 2
         elif axis == 1:
-            i, k = line % nx, line // nx
-            base = k * ny * nx + i
+            na, nb, lo, hi = k_hi - k_lo, NX, 2, NY - 2
         else:
-            base = line
-        for v in range(nvar):
-            s = src[v]
-            d = dst[v]
-            for m in range(n):
-                acc = 10.0 * s[base + m * stride]
-                for off in (-2, -1, 1, 2):
-                    q = m + off
-                    c = 4.0 if off == -1 or off == 1 else -1.0
-                    if 0 <= q < n:
-                        acc += c * s[base + q * stride]
-                    elif not shear:
-                        acc += c * s[base + (q % n) * stride]
-                    else:  # x-line of a shearing box: the image column, y shifted by whole cells
-                        jj = (j - y_cells) % ny if q < 0 else (j + y_cells) % ny
-                        acc += c * s[(k * ny + jj) * nx + q % n]
-                d[base + m * stride] = acc * 0.0625
+            na, nb, lo, hi = NY, NX, max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
+        nlines = na * nb
+        nchunk = min(nlines, ROW_CHUNKS)
+        for c in prange(nchunk):
+            for line in range(c * nlines // nchunk, (c + 1) * nlines // nchunk):
+                a = line // nb + (k_lo if axis < 2 else 0)
+                _filter_line(f, tmp, axis, a, line % nb, lo, hi)
+        for c in prange(nchunk):
+            for line in range(c * nlines // nchunk, (c + 1) * nlines // nchunk):
+                a = line // nb + (k_lo if axis < 2 else 0)
+                _copy_line(tmp, f, axis, a, line % nb, lo, hi)

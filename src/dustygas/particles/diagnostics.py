@@ -1,4 +1,5 @@
-"""Fourier-mode amplitudes of the gas and the particles, for the growth analysis.
+"""Diagnostics of the particles: Fourier-mode amplitudes for the growth analysis, and per-species
+moments (mass, scale height, velocity dispersion) for the history.
 
 For a wave vector ``k`` the complex amplitude of a field ``f = Re(A e^{i k·x})`` is
 ``A = (2/N) sum f e^{-i k·x}`` over the N cells (or particles). Densities are relative
@@ -20,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["MODE_FIELDS", "gas_mode", "particle_mode"]
+__all__ = ["MODE_FIELDS", "gas_mode", "particle_mode", "species_statistics"]
 
 #: field names of the mode amplitudes, gas then dust (the order of the linear eigenvectors)
 MODE_FIELDS = ("drho_g", "ux", "uy", "uz", "drho_p", "wx", "wy", "wz")
@@ -75,3 +76,36 @@ def particle_mode(pos, vel, mass, kx, ky, kz, shear_y, out) -> None:
     vb = (vbar0 / total, vbar1 / total, vbar2 / total)
     for a in range(3):
         out[1 + a] = 2.0 * complex(p_re[a], p_im[a]) / total - vb[a] * d
+
+
+def species_statistics(pos, vel, mass, species, nspecies: int, shear_y: float) -> list[dict[str, float]]:
+    """Mass-weighted moments of every species (sums in the particles' canonical order).
+
+    ``mass``; ``z_mean``; ``scale_height`` ``H_p = sqrt(<(z - z̄)²>)`` (the standard deviation of
+    the vertical positions: for a Gaussian layer its scale height); ``vx``, ``vy`` (mean, ``v_y``
+    relative to the shear, ``shear_y`` = ``q Ω`` for full velocities else 0); ``sigma_x``,
+    ``sigma_y``, ``sigma_z``: the velocity dispersions about the means.
+
+    >>> z = np.array([-1.0, 1.0]); pos = np.zeros((3, 2)); pos[2] = z
+    >>> species_statistics(pos, np.zeros((3, 2)), np.ones(2), np.zeros(2, int), 1, 0.0)[0]["scale_height"]
+    1.0
+    """
+    out = []
+    vy = vel[1] + shear_y * pos[0]
+    for s in range(nspecies):
+        sel = species == s
+        m = mass[sel]
+        tot = float(m.sum())
+        if tot == 0.0:
+            out.append({"mass": 0.0})
+            continue
+        z = pos[2, sel]
+        zm = float(m @ z) / tot
+        row = {"mass": tot, "z_mean": zm, "scale_height": float(np.sqrt(max(float(m @ (z - zm) ** 2) / tot, 0.0)))}
+        for name, v in (("x", vel[0, sel]), ("y", vy[sel]), ("z", vel[2, sel])):
+            mean = float(m @ v) / tot
+            if name != "z":
+                row[f"v{name}"] = mean
+            row[f"sigma_{name}"] = float(np.sqrt(max(float(m @ (v - mean) ** 2) / tot, 0.0)))
+        out.append(row)
+    return out

@@ -21,71 +21,33 @@ deposits exactly its own mass and momentum, and a uniform lattice of particles d
 uniform density whatever its offset (for TSC and CIC; NGP needs the lattice on the cell
 centres).
 
-The stencil of a particle is assembled in the particle loop of :mod:`dustygas.particles.push`
-(the only hot loop; compiled helpers that write into arrays cost a reference-count update per
-call, so the assembly is written out there once for every use). The **same stencil and
-weights** serve to gather the gas velocity at the particle (thesis eq.
-4.22, :math:`\\bar u(x_d) = \\sum_a W(x_d - x_a) u_a`) and to deposit its back-reaction
-(eq. 4.24), so the drag impulse the gas receives is exactly minus the one the particles
-receive (eq. 4.25) and no particle accelerates itself (Youdin & Johansen 2007).
+The engine stores, for each particle and axis, the weights of the cells ``c - R .. c + R``
+around the cell ``c`` that *contains* the particle (:func:`cell_weights`; ``R`` is the
+kernel's reach, :data:`KERNEL_REACH`: 1 for NGP, CIC and TSC, whose cells all lie within one
+cell of ``c``, 2 for TSC-C). The **same weights** serve to gather the gas at the particle
+(thesis eq. 4.22, :math:`\\bar u(x_d) = \\sum_a W(x_d - x_a) u_a`) and to deposit its
+back-reaction (eq. 4.24), so the drag impulse the gas receives is exactly minus the one the
+particles receive (eq. 4.25) and no particle accelerates itself (Youdin & Johansen 2007).
 
-Boundaries: the stencil wraps periodically. In a shear-periodic box with an active y axis a
-cell index beyond the radial boundary stands for a cell of the radial *image* of the box,
-which slides in y by the shear offset ``s_y = q Ω L_x t`` (content at ``(x - L_x, y)`` is that
-at ``(x, y - s_y)``): the columns reached through the inner boundary are weighted at
-``y - s_y``, those through the outer boundary at ``y + s_y`` -- the weights of the particle's
-image, so the stencil still sums to one. When the full azimuthal velocity is stored, gas
-gathered through the inner (outer) boundary has ``v_y`` larger (smaller) by ``q Ω L_x``.
+Positions are measured from the global origin of the mesh and cells are numbered globally
+(:class:`~dustygas.grid.mesh.Offsets`), so the weights of a particle do not depend on how the
+box is split into blocks.
 """
 
 from __future__ import annotations
 
-import math
-from typing import NamedTuple
-
 from numba import njit
 
-__all__ = ["NGP", "CIC", "TSC", "TSC_C", "KERNELS", "KERNEL_WIDTH", "KERNEL_REACH", "MAX_STENCIL", "Cells",
-           "axis_weights", "into_box"]
+__all__ = ["NGP", "CIC", "TSC", "TSC_C", "KERNELS", "KERNEL_WIDTH", "KERNEL_REACH", "axis_weights", "cell_weights",
+           "axis_cell", "axis_stencil"]
 
 NGP, CIC, TSC, TSC_C = 0, 1, 2, 3
 #: name -> code of the assignment functions
 KERNELS = {"ngp": NGP, "cic": CIC, "tsc": TSC, "tsc-c": TSC_C}
 #: cells per axis of each assignment function, by code
 KERNEL_WIDTH = (1, 2, 3, 5)
-#: cells a particle's stencil reaches on either side of its own cell, by code
-KERNEL_REACH = (0, 1, 1, 2)
-#: most cells a particle's stencil can hold (compensated TSC in 3D)
-MAX_STENCIL = 125
-
-
-class Cells(NamedTuple):
-    """What the particle kernels know of the mesh (built from :class:`~dustygas.grid.GridGeometry`).
-
-    ``n*``: domain cells per axis (1: inactive); ``g*``: ghost cells per side of the gas
-    arrays; ``d*``, ``*0``, ``l*``: cell sizes, lower corner, box lengths; ``shear``: radial
-    boundaries shear-periodic; ``jump``: ``q Ω L_x`` if the stored gas ``v_y`` is the full
-    velocity, else 0; ``shear_rate``: ``q Ω L_x`` (the sliding speed of the images).
-    """
-
-    nx: int
-    ny: int
-    nz: int
-    gx: int
-    gy: int
-    gz: int
-    dx: float
-    dy: float
-    dz: float
-    x0: float
-    y0: float
-    z0: float
-    lx: float
-    ly: float
-    lz: float
-    shear: bool
-    jump: float
-    shear_rate: float
+#: cells the stencil reaches on either side of the cell that contains the particle, by code
+KERNEL_REACH = (1, 1, 1, 2)
 
 
 @njit(cache=True, error_model="numpy")
@@ -95,7 +57,7 @@ def axis_weights(s: float, order: int):
     ``s`` is the particle position in cell widths from the centre of cell 0; unused weights
     are 0 (NGP uses one cell, CIC two, TSC three, compensated TSC five).
     """
-    # floor(v) as int(v + 2) - 2: exact for v > -2 (particles lie within a cell of the box) and
+    # floor(v) as int(v + 2) - 2: exact for v > -2 (particles lie within a cell of the block) and
     # much cheaper than a call to floor
     if order == CIC:
         i = int(s + 2.0) - 2
@@ -117,6 +79,56 @@ def axis_weights(s: float, order: int):
 
 
 @njit(cache=True, error_model="numpy")
-def into_box(s: float, n: int) -> float:
-    """``s`` (in cell widths from the centre of cell 0) moved by whole periods into [-1/2, n - 1/2)."""
-    return s - n * math.floor((s + 0.5) / n)
+def cell_weights(s: float, order: int, reach: int, out) -> int:
+    """Global index ``c`` of the cell containing the particle (``floor(s + 1/2)``) and, in
+    ``out[0 .. 2 reach]``, the weights of cells ``c - reach .. c + reach`` (zeros where the
+    kernel is narrower)."""
+    c = int(s + 2.5) - 2  # the containing cell: floor(s + 1/2)
+    first, w0, w1, w2, w3, w4 = axis_weights(s, order)
+    for m in range(2 * reach + 1):
+        out[m] = 0.0
+    off = first - c + reach
+    out[off] = w0
+    if order >= CIC:
+        out[off + 1] = w1
+    if order >= TSC:
+        out[off + 2] = w2
+    if order == TSC_C:
+        out[off + 3] = w3
+        out[off + 4] = w4
+    return c
+
+
+@njit(cache=True, error_model="numpy")
+def axis_cell(x: float, x0: float, inv_dx: float, offset: int, n: int) -> int:
+    """Local index of the cell containing ``x`` along an axis of this block: ``floor((x - x0)/Δx)``
+    from the global origin ``x0``, minus the block's first cell ``offset``, clipped into
+    ``0 .. n-1`` (0 on an inactive axis). The same arithmetic as :func:`axis_stencil`."""
+    if n == 1:
+        return 0
+    c = int((x - x0) * inv_dx - 0.5 + 2.5) - 2 - offset
+    return min(max(c, 0), n - 1)
+
+
+@njit(cache=True, error_model="numpy")
+def axis_stencil(x: float, x0: float, inv_dx: float, offset: int, n: int, order: int, reach: int, out) -> int:
+    """:func:`axis_cell` and the weights ``out[0 .. 2 reach]`` of the cells around it (:func:`cell_weights`).
+
+    On an inactive axis: cell 0 and the weight 1 in the middle slot. A position that rounds
+    onto the upper face of the block is given the weights of the last cell (the physical
+    weights are the same there), so that the cell always matches :func:`axis_cell`.
+    """
+    if n == 1:
+        for m in range(2 * reach + 1):
+            out[m] = 0.0
+        out[reach] = 1.0
+        return 0
+    s = (x - x0) * inv_dx - 0.5
+    c = cell_weights(s, order, reach, out) - offset
+    while c > n - 1:
+        s = s - 1e-12 * max(1.0, abs(s))
+        c = cell_weights(s, order, reach, out) - offset
+    while c < 0:
+        s = s + 1e-12 * max(1.0, abs(s))
+        c = cell_weights(s, order, reach, out) - offset
+    return c

@@ -2,11 +2,13 @@
 
 ::
 
-    [particles]  lattice kernel integrator feedback cfl drag_cfl smooth
+    [particles]  lattice kernel feedback cfl drag_cfl smooth boundary_x boundary_y boundary_z
 
 ``lattice`` particles per cell along each active axis (1: one particle per cell in 2D and 3D),
-``kernel`` the assignment function, ``integrator`` the drag integrator, ``cfl`` the particle
-Courant number (0: the gas's), ``drag_cfl`` an optional limit ``Δt <= drag_cfl t_s``.
+``kernel`` the assignment function, ``cfl`` the particle Courant number (0: the gas's),
+``drag_cfl`` an optional limit ``Δt <= drag_cfl t_s`` (the drag integrator needs none),
+``boundary_*`` the particle boundary of each axis (``auto``: the gas's periodic kinds, and
+``outflow`` where the gas is open).
 """
 
 from __future__ import annotations
@@ -14,25 +16,37 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import Config, Param
+from .boundaries import PARTICLE_BOUNDARIES
 from .coupling import ParticleGridEngine
-from .drag import DRAG_INTEGRATORS
 from .interp import KERNELS
 from .store import ParticleStore
 
-__all__ = ["PARTICLES", "lattice_positions", "particle_engine_from_config"]
+__all__ = ["PARTICLES", "lattice_positions", "particle_engine_from_config", "particle_boundaries"]
 
 PARTICLES: dict[str, Param] = {
     "lattice": Param(1, "particles per cell along each active axis (lattice^ndim per cell)", min=1),
     "kernel": Param("tsc", "assignment function for gather and deposit (thesis eqs. 4.22, 4.24)",
                     choices=tuple(KERNELS)),
-    "integrator": Param("semi-implicit", "drag integrator (semi-implicit: Bai & Stone 2010a; exponential: exact "
-                        "for the step's gas velocity)", choices=tuple(DRAG_INTEGRATORS)),
     "feedback": Param(True, "back-reaction of the drag on the gas"),
     "cfl": Param(0.0, "particle Courant number (0: that of the gas)", min=0.0, max=1.0),
-    "drag_cfl": Param(0.0, "if > 0, limit the step to drag_cfl times the smallest stopping time", min=0.0),
+    "drag_cfl": Param(0.0, "if > 0, limit the step to drag_cfl times the smallest stopping time (not needed: the "
+                      "drag is integrated exactly)", min=0.0),
     "smooth": Param(True, "gather and deposit through the grid-scale filter 1 - d^4/16 (removes the aliasing "
                     "instability of drifting particles at the grid scale)"),
+    **{f"boundary_{a}": Param("auto", f"particle boundary along {a} (auto: periodic where the gas is, else outflow)",
+                              choices=("auto",) + tuple(PARTICLE_BOUNDARIES)) for a in "xyz"},
 }
+
+
+def particle_boundaries(cfg: Config, gas_kinds: tuple[str, str, str]) -> tuple[str, str, str]:
+    """The particle boundary of each axis from ``[particles] boundary_*`` (``auto`` resolved)."""
+    out = []
+    for a, gas in zip("xyz", gas_kinds):
+        kind = cfg.particles[f"boundary_{a}"] if f"boundary_{a}" in cfg.particles else "auto"
+        if kind == "auto":
+            kind = gas if gas in ("periodic", "shear-periodic") else "outflow"
+        out.append(kind)
+    return tuple(out)
 
 
 def lattice_positions(shape: tuple[int, int, int], lower, dx, lattice: int, offset: float = 0.5) -> np.ndarray:
@@ -60,5 +74,6 @@ def particle_engine_from_config(cfg: Config, gas, store: ParticleStore, t_stop, 
                                 **kwargs) -> ParticleGridEngine:
     """A :class:`ParticleGridEngine` (or subclass ``cls``) with the ``[particles]`` section of ``cfg``."""
     p = cfg.particles
-    return cls(gas, store, t_stop, kernel=p.kernel, integrator=p.integrator, feedback=p.feedback,
-               cfl=p.cfl if p.cfl > 0 else None, drag_cfl=p.drag_cfl, smooth=p.smooth, **kwargs)
+    kwargs.setdefault("boundaries", particle_boundaries(cfg, gas.geometry.boundaries))
+    return cls(gas, store, t_stop, kernel=p.kernel, feedback=p.feedback, cfl=p.cfl if p.cfl > 0 else None,
+               drag_cfl=p.drag_cfl, smooth=p.smooth, **kwargs)

@@ -1,61 +1,85 @@
-"""The particle store: struct-of-arrays, kept sorted by cell.
+"""The particle store: struct-of-arrays with room to grow, kept sorted by cell.
 
-:class:`ParticleStore` holds, for N particles,
+:class:`ParticleStore` holds, for N particles (arrays of a capacity C ≥ N; entries ``0 .. N-1``
+are the particles):
 
-* ``pos`` ``(3, N)`` positions and ``vel`` ``(3, N)`` velocities (float64; the velocity frame
+* ``pos`` ``(3, C)`` positions and ``vel`` ``(3, C)`` velocities (float64; the velocity frame
   is the gas's: full velocities, or relative to the shear ``v + q Ω x ŷ`` under orbital
   advection; an inactive axis keeps its coordinate and evolves its velocity);
-* ``species`` ``(N,)`` int32 (index into the engine's species table), ``pid`` ``(N,)`` int64
-  (a label that follows the particle through sorts and restarts), ``mass`` ``(N,)`` float64
-  (per unit length of the inactive axes, like the gas).
+* ``species`` ``(C,)`` int32 (index into the engine's species table), ``pid`` ``(C,)`` int64
+  (a label that follows the particle through sorts, block exchanges and restarts), ``mass``
+  ``(C,)`` float64 (per unit length of the inactive axes, like the gas).
 
-The engine keeps the particles sorted by the flat index of the cell that holds them, slab by
-slab along the *slab axis* (z in 3D and x-z boxes, x in x-y boxes): neighbours in memory are
-neighbours in space (cache locality for the gather and the deposit), and each slab's particles
-are a contiguous range, which is what lets threads deposit into disjoint slabs without races
-(:mod:`dustygas.particles.deposit`). The sort is a stable counting sort, so the order -- and
-with it every floating-point sum -- depends only on the particles, not on the thread count.
+Particles enter (set-up, a neighbouring block) with :meth:`ParticleStore.append` and leave
+(an outflow boundary, a neighbouring block) with :meth:`ParticleStore.remove`; both keep the
+order of the others. The views :attr:`~ParticleStore.pos` etc. are the first N entries.
+
+The engine keeps the particles in *canonical order*: by the flat index ``(k ny + j) nx + i``
+of the cell that contains them and, within a cell, by ``pid`` (:func:`sort_by_cell`). The order
+then depends only on the positions and labels -- not on the thread count, nor on the order in
+which particles arrived from other blocks -- and so does every sum taken over particles in this
+order; each cell's particles and each row's are contiguous ranges (``cell_start``), which is
+what the race-free deposit of :mod:`dustygas.particles.deposit` reads.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from ..errors import SetupError
+from .interp import axis_cell
 
-__all__ = ["ParticleStore", "slab_axis", "cell_keys", "counting_sort", "slab_starts"]
+__all__ = ["ParticleStore", "compact", "sort_by_cell"]
 
 
-@dataclass
 class ParticleStore:
-    """Struct-of-arrays particle data (see module docstring)."""
+    """Struct-of-arrays particle data with spare capacity (see module docstring).
 
-    pos: np.ndarray
-    vel: np.ndarray
-    species: np.ndarray
-    pid: np.ndarray
-    mass: np.ndarray
+    Parameters
+    ----------
+    pos, vel
+        ``(3, N)`` positions and velocities.
+    species, pid, mass
+        ``(N,)`` (species and mass broadcast from scalars).
+    capacity
+        Room for this many particles (default N).
+    """
 
-    def __post_init__(self) -> None:
-        # own, writable, contiguous copies (the engine sorts them in place)
-        self.pos = np.array(self.pos, dtype=np.float64, order="C")
-        self.vel = np.array(self.vel, dtype=np.float64, order="C")
-        n = self.pos.shape[1] if self.pos.ndim == 2 else -1
-        self.species = np.array(np.broadcast_to(self.species, (max(n, 0),)), dtype=np.int32)
-        self.pid = np.array(self.pid, dtype=np.int64)
-        self.mass = np.array(np.broadcast_to(self.mass, (max(n, 0),)), dtype=np.float64)
-        if self.pos.ndim != 2 or self.pos.shape[0] != 3 or self.vel.shape != self.pos.shape:
-            raise SetupError(f"particle positions and velocities must both be (3, N) arrays, got {self.pos.shape}"
-                             f" and {self.vel.shape}")
-        if self.pid.shape != (n,):
-            raise SetupError(f"particle ids: expected {n} entries, got {self.pid.shape}")
-        if not (np.all(np.isfinite(self.pos)) and np.all(np.isfinite(self.vel))):
+    def __init__(self, pos, vel, species, pid, mass, capacity: int | None = None):
+        pos = np.asarray(pos, dtype=np.float64)
+        vel = np.asarray(vel, dtype=np.float64)
+        if pos.ndim != 2 or pos.shape[0] != 3 or vel.shape != pos.shape:
+            raise SetupError(f"particle positions and velocities must both be (3, N) arrays, got {pos.shape}"
+                             f" and {vel.shape}")
+        n = pos.shape[1]
+        species = np.broadcast_to(np.asarray(species), (n,))
+        mass = np.broadcast_to(np.asarray(mass, dtype=np.float64), (n,))
+        pid = np.asarray(pid, dtype=np.int64)
+        if pid.shape != (n,):
+            raise SetupError(f"particle ids: expected {n} entries, got {pid.shape}")
+        if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
             raise SetupError("particle positions and velocities must be finite")
-        if n and not np.all(self.mass > 0):
+        if n and not np.all(mass > 0):
             raise SetupError("particle masses must be positive")
+        self.n = 0
+        self._allocate(max(n, capacity or 0, 1))
+        self.append(pos, vel, species, pid, mass)
+
+    def _allocate(self, capacity: int) -> None:
+        old = self.n
+        new_pos = np.zeros((3, capacity))
+        new_vel = np.zeros((3, capacity))
+        new_species = np.zeros(capacity, dtype=np.int32)
+        new_pid = np.zeros(capacity, dtype=np.int64)
+        new_mass = np.zeros(capacity)
+        if old:
+            new_pos[:, :old] = self._pos[:, :old]
+            new_vel[:, :old] = self._vel[:, :old]
+            new_species[:old] = self._species[:old]
+            new_pid[:old] = self._pid[:old]
+            new_mass[:old] = self._mass[:old]
+        self._pos, self._vel, self._species, self._pid, self._mass = new_pos, new_vel, new_species, new_pid, new_mass
 
     @classmethod
     def create(cls, pos, vel, species=0, mass=1.0) -> "ParticleStore":
@@ -63,12 +87,58 @@ class ParticleStore:
         pos = np.asarray(pos, dtype=np.float64)
         return cls(pos, vel, species, np.arange(pos.shape[1], dtype=np.int64), mass)
 
+    # ------------------------------------------------------------------ views
     @property
-    def n(self) -> int:
-        return int(self.pos.shape[1])
+    def capacity(self) -> int:
+        return int(self._pos.shape[1])
 
+    @property
+    def pos(self) -> np.ndarray:
+        return self._pos[:, :self.n]
+
+    @property
+    def vel(self) -> np.ndarray:
+        return self._vel[:, :self.n]
+
+    @property
+    def species(self) -> np.ndarray:
+        return self._species[:self.n]
+
+    @property
+    def pid(self) -> np.ndarray:
+        return self._pid[:self.n]
+
+    @property
+    def mass(self) -> np.ndarray:
+        return self._mass[:self.n]
+
+    def buffers(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The whole arrays (capacity C, contiguous) for compiled kernels, which take N apart."""
+        return self._pos, self._vel, self._species, self._pid, self._mass
+
+    # ------------------------------------------------------------------ growth
+    def append(self, pos, vel, species, pid, mass) -> None:
+        """Add particles at the end (growing the arrays by doubling when full)."""
+        pos = np.asarray(pos, dtype=np.float64)
+        m = pos.shape[1]
+        if self.n + m > self.capacity:
+            self._allocate(max(2 * self.capacity, self.n + m))
+        s = slice(self.n, self.n + m)
+        self._pos[:, s] = pos
+        self._vel[:, s] = vel
+        self._species[s] = species
+        self._pid[s] = pid
+        self._mass[s] = mass
+        self.n += m
+
+    def remove(self, keep: np.ndarray) -> None:
+        """Keep only the particles where ``keep`` (N,) is True, in their order."""
+        m = compact(self._pos, self._vel, self._species, self._pid, self._mass, self.n, np.asarray(keep, dtype=np.bool_))
+        self.n = int(m)
+
+    # ------------------------------------------------------------------ outputs
     def arrays(self) -> dict[str, np.ndarray]:
-        """Copies of every array, by name (for checkpoints)."""
+        """Copies of every array, by name (snapshots and checkpoints)."""
         return {"pos": self.pos.copy(), "vel": self.vel.copy(), "species": self.species.copy(),
                 "pid": self.pid.copy(), "mass": self.mass.copy()}
 
@@ -77,112 +147,91 @@ class ParticleStore:
         return self.vel @ self.mass
 
 
-def slab_axis(shape: tuple[int, int, int]) -> int:
-    """Axis along which particles are grouped in slabs: z if active, else x if active, else y.
-
-    The x axis rather than y in an x-y box: velocities along x are bounded by the Courant
-    condition, azimuthal ones under orbital advection are not, and the slab scheme needs
-    particles to move by less than a cell per half step along the slab axis.
-    """
-    if shape[2] > 1:
-        return 2
-    if shape[0] > 1:
-        return 0
-    return 1
-
-
 @njit(cache=True, error_model="numpy")
-def _cell(v: float, lo: float, d: float, n: int) -> int:
-    if n == 1:
-        return 0
-    i = int((v - lo) / d)  # truncation is floor here: v >= lo inside the box
-    return min(max(i, 0), n - 1)
-
-
-@njit(cache=True, error_model="numpy")
-def cell_key(x, y, z, cells, axis) -> int:
-    """Sort key of a position: the slab index times the cells per slab plus the cell's index
-    within the slab (slab axis ``axis``; positions must be inside the box)."""
-    i = _cell(x, cells.x0, cells.dx, cells.nx)
-    j = _cell(y, cells.y0, cells.dy, cells.ny)
-    k = _cell(z, cells.z0, cells.dz, cells.nz)
-    if axis == 2:
-        return (k * cells.ny + j) * cells.nx + i
-    if axis == 0:
-        return (i * cells.nz + k) * cells.ny + j
-    return (j * cells.nz + k) * cells.nx + i
-
-
-@njit(cache=True, error_model="numpy")
-def cell_keys(pos, cells, axis, keys) -> None:
-    """:func:`cell_key` of every particle into ``keys``."""
-    for p in range(pos.shape[1]):
-        keys[p] = cell_key(pos[0, p], pos[1, p], pos[2, p], cells, axis)
-
-
-@njit(cache=True, error_model="numpy")
-def counting_sort(keys, ncell, pos, vel, species, pid, mass, order) -> bool:
-    """Stable counting sort of every particle array by ``keys`` (in place; ``keys`` too).
-
-    ``order`` is an int64 work array of length N. Returns False (and does nothing) if the
-    keys were already non-decreasing.
-    """
-    n = keys.shape[0]
-    done = True
-    for p in range(1, n):
-        if keys[p] < keys[p - 1]:
-            done = False
-            break
-    if done:
-        return False
-    start = np.zeros(ncell + 1, dtype=np.int64)
+def compact(pos, vel, species, pid, mass, n, keep) -> int:
+    """Move the kept particles of ``0 .. n-1`` to the front in order; returns their number."""
+    m = 0
     for p in range(n):
-        start[keys[p] + 1] += 1
+        if keep[p]:
+            if m != p:
+                for a in range(3):
+                    pos[a, m] = pos[a, p]
+                    vel[a, m] = vel[a, p]
+                species[m] = species[p]
+                pid[m] = pid[p]
+                mass[m] = mass[p]
+            m += 1
+    return m
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork) -> None:
+    """Put particles ``0 .. n-1`` into canonical order (module docstring) and fill ``cell_start``.
+
+    ``lay``, ``sp``, ``off``: the block (:mod:`dustygas.grid.mesh`; ``sp.x0`` the global origin).
+    ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
+    ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
+    ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
+    pass, one copy-back pass). The histogram and its prefix sum are serial (``O(N + ncell)``); computing the
+    keys, permuting the arrays and ordering each cell by ``pid`` run in parallel.
+    """
+    nx, ny, nz = lay.nx, lay.ny, lay.nz
+    ncell = nx * ny * nz
+    ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
+    for p in prange(n):
+        i = axis_cell(pos[0, p], sp.x0, ix, off.i0, nx)
+        j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
+        k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
+        keys[p] = (k * ny + j) * nx + i
+    for c in range(ncell + 1):
+        cell_start[c] = 0
+    for p in range(n):
+        cell_start[keys[p] + 1] += 1
     for c in range(ncell):
-        start[c + 1] += start[c]
+        cell_start[c + 1] += cell_start[c]
+    ordered = True  # already canonical (most steps: few particles change cells)
+    for p in range(1, n):
+        if keys[p] < keys[p - 1] or (keys[p] == keys[p - 1] and pid[p] < pid[p - 1]):
+            ordered = False
+            break
+    if ordered:
+        return
+    # stable placement: order[slot] = old index
+    for c in range(ncell):
+        ptr[c] = cell_start[c]
     for p in range(n):
         c = keys[p]
-        order[start[c]] = p
-        start[c] += 1
-    tmp = np.empty(n)
-    for a in range(3):
-        for p in range(n):
-            tmp[p] = pos[a, order[p]]
-        for p in range(n):
-            pos[a, p] = tmp[p]
-        for p in range(n):
-            tmp[p] = vel[a, order[p]]
-        for p in range(n):
-            vel[a, p] = tmp[p]
-    for p in range(n):
-        tmp[p] = mass[order[p]]
-    for p in range(n):
-        mass[p] = tmp[p]
-    itmp = np.empty(n, dtype=np.int64)
-    for p in range(n):
-        itmp[p] = pid[order[p]]
-    for p in range(n):
-        pid[p] = itmp[p]
-    for p in range(n):
-        itmp[p] = species[order[p]]
-    for p in range(n):
-        species[p] = itmp[p]
-    for p in range(n):
-        itmp[p] = keys[order[p]]
-    for p in range(n):
-        keys[p] = itmp[p]
-    return True
-
-
-@njit(cache=True, error_model="numpy")
-def slab_starts(keys, cells_per_slab, nslab, starts) -> None:
-    """``starts[s]``: index of the first particle of slab ``s`` (``starts[nslab] = N``); the
-    keys must be sorted."""
-    n = keys.shape[0]
-    p = 0
-    for s in range(nslab):
-        first = s * cells_per_slab
-        while p < n and keys[p] < first:
-            p += 1
-        starts[s] = p
-    starts[nslab] = n
+        order[ptr[c]] = p
+        ptr[c] += 1
+    # within a cell by pid (insertion sort on the permutation; cells hold few particles, and
+    # a cell's particles arrive in runs already ordered)
+    for c in prange(ncell):
+        a, b = cell_start[c], cell_start[c + 1]
+        for q in range(a + 1, b):
+            v = order[q]
+            key = pid[v]
+            r = q - 1
+            while r >= a and pid[order[r]] > key:
+                order[r + 1] = order[r]
+                r -= 1
+            order[r + 1] = v
+    nchunk = min(max(n, 1), 64)
+    for c in prange(nchunk):  # gather every array in the new order ...
+        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+            o = order[p]
+            for a in range(3):
+                fwork[a, p] = pos[a, o]
+                fwork[3 + a, p] = vel[a, o]
+            fwork[6, p] = mass[o]
+            iwork[0, p] = pid[o]
+            iwork[1, p] = species[o]
+            iwork[2, p] = keys[o]
+    for c in prange(nchunk):  # ... and copy it back
+        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+            for a in range(3):
+                pos[a, p] = fwork[a, p]
+                vel[a, p] = fwork[3 + a, p]
+            mass[p] = fwork[6, p]
+            pid[p] = iwork[0, p]
+            species[p] = iwork[1, p]
+            keys[p] = iwork[2, p]

@@ -30,6 +30,9 @@ from numpy.typing import ArrayLike
 
 __all__ = [
     "settling_time",
+    "oscillator_rates",
+    "damping_time",
+    "settling_trajectory",
     "steady_settling_velocity",
     "growth_settling_threshold",
     "growth_to_settling_ratio",
@@ -48,6 +51,46 @@ def settling_time(taus: ArrayLike, Omega: ArrayLike = 1.0) -> np.ndarray:
     """
     taus = np.asarray(taus, dtype=np.float64)
     return (2.0 * taus**2 + 1.0) / (taus * np.asarray(Omega, dtype=np.float64))
+
+
+def oscillator_rates(taus: float, Omega: float = 1.0) -> tuple[complex, complex]:
+    """The two rates :math:`\\lambda_\\pm = -\\frac{1}{2t_s} \\pm \\sqrt{\\frac{1}{4t_s^2} - \\Omega^2}` of
+    :math:`\\ddot z = -\\dot z/t_s - \\Omega^2 z` (solutions :math:`e^{\\lambda t}`), ``λ_+`` the slower.
+
+    >>> [complex(round(l.real, 12), round(l.imag, 12)) for l in oscillator_rates(1.0)]
+    [(-0.5+0.866025403784j), (-0.5-0.866025403784j)]
+    """
+    ts = taus / Omega
+    root = np.sqrt(complex(0.25 / ts**2 - Omega**2))
+    return -0.5 / ts + root, -0.5 / ts - root
+
+
+def damping_time(taus: float, Omega: float = 1.0) -> float:
+    """e-folding time :math:`1/|{\\rm Re}\\,\\lambda_+|` of the slowest solution of the settling
+    oscillator: the exact counterpart of thesis eq. 4.18, which it approaches in both limits
+    (:math:`1/(\\tau_s\\Omega)` for :math:`\\tau_s \\ll 1`, :math:`2\\tau_s/\\Omega` for :math:`\\tau_s \\gg 1`).
+
+    >>> round(damping_time(0.01) / float(settling_time(0.01)), 6), damping_time(1.0)
+    (0.9997, 2.0)
+    """
+    return float(-1.0 / oscillator_rates(taus, Omega)[0].real)
+
+
+def settling_trajectory(t: ArrayLike, z0: float, v0: float, taus: float, Omega: float = 1.0) -> np.ndarray:
+    """Exact height :math:`z(t)` of a grain in gas at rest, :math:`\\ddot z = -\\dot z/t_s - \\Omega^2 z`,
+    from :math:`z(0) = z_0, \\dot z(0) = v_0` (superposition of :func:`oscillator_rates`; the
+    critically damped :math:`\\tau_s = 1/2` as the limit).
+
+    >>> float(settling_trajectory(0.0, 0.3, 0.0, 0.1))
+    0.3
+    """
+    t = np.asarray(t, dtype=np.float64)
+    lp, lm = oscillator_rates(taus, Omega)
+    if abs(lp - lm) < 1e-9 * abs(lp):
+        return ((z0 + (v0 - lp * z0) * t) * np.exp(lp * t)).real
+    a = (v0 - lm * z0) / (lp - lm)
+    b = z0 - a
+    return (a * np.exp(lp * t) + b * np.exp(lm * t)).real
 
 
 def steady_settling_velocity(taus: ArrayLike, c_s: ArrayLike = 1.0) -> np.ndarray:

@@ -24,7 +24,7 @@ from ..config import Param, with_defaults
 from ..errors import ConfigError
 from ..grid import GridEngine, Mesh
 from ..grid.params import GRID
-from ..particles import ParticleGridEngine, ParticleStore
+from ..particles import ConstantAcceleration, ParticleGridEngine, ParticleStore, RotatingFrame
 from ..particles.params import PARTICLES, lattice_positions, particle_engine_from_config
 from ..runner import RUN_SCHEMA
 from . import Problem, register
@@ -107,7 +107,8 @@ class NSH(Problem):
         vel[0] = np.repeat(eq.dust_vx, per) * p.Pi
         vel[1] = (np.repeat(eq.dust_vy, per) + boost) * p.Pi + shear * pos[0]
         store = ParticleStore.create(pos, vel, species, mass)
-        engine = particle_engine_from_config(cfg, gas, store, list(p.taus), cls=NSHEngine,
-                                             acceleration=(0.0 if gas_frame else -2.0 * p.Pi, 0.0, 0.0))
+        terms = [RotatingFrame(1.0, 1.5, relative_to_shear=p.orbital_advection),
+                 ConstantAcceleration(0.0 if gas_frame else -2.0 * p.Pi, 0.0, 0.0)]
+        engine = particle_engine_from_config(cfg, gas, store, list(p.taus), cls=NSHEngine, particle_terms=terms)
         engine.eta_vK = p.Pi
         return engine

@@ -48,12 +48,12 @@ import numpy as np
 from ..config import Param, with_defaults
 from ..errors import ConfigError, SetupError
 from ..grid import GridEngine, Mesh
+from ..grid.mesh import cell_average_factor
 from ..grid.params import SCHEME
-from ..particles import ParticleStore
-from ..particles.coupling import GAS_INTEGRATORS
-from ..particles.interp import Cells, KERNELS
+from ..particles import ConstantAcceleration, GasConstantAcceleration, ParticleStore, RotatingFrame
+from ..particles.boundaries import wrap_positions
+from ..particles.coupling import GAS_INTEGRATORS, deposit_density
 from ..particles.params import PARTICLES, lattice_positions, particle_engine_from_config
-from ..particles.push import deposit_density
 from ..runner import RUN_SCHEMA
 from . import Problem, preset, register
 
@@ -89,10 +89,6 @@ class StreamingBox:
     omega: complex  # linear-theory frequency (standard convention), units of Omega
 
 
-def _cell_average_factor(k: np.ndarray, dx) -> float:
-    return float(np.prod([np.sinc(kd * d / (2 * np.pi)) for kd, d in zip(k, dx)]))
-
-
 def _displace(pos0: np.ndarray, k: np.ndarray, amp: complex) -> np.ndarray:
     """Positions realising ``δρ/ρ = Re(amp e^{i k·x})`` from the lattice ``pos0`` (exact map)."""
     kk = float(np.linalg.norm(k))
@@ -106,15 +102,6 @@ def _displace(pos0: np.ndarray, k: np.ndarray, amp: complex) -> np.ndarray:
         if np.max(np.abs(f)) < 1e-15 * max(1.0, np.max(np.abs(s0))):
             break
     return pos0 + np.outer(khat, s - s0)
-
-
-def _wrap(pos: np.ndarray, lower, box, shape) -> np.ndarray:
-    out = pos.copy()
-    for a in range(3):
-        if shape[a] > 1:
-            out[a] = lower[a] + np.mod(out[a] - lower[a], box[a])
-            out[a] = np.where(out[a] >= lower[a] + box[a], lower[a], out[a])
-    return out
 
 
 def streaming_box(
@@ -163,7 +150,7 @@ def streaming_box(
     # ---- gas: cell averages of the eigenmode
     x, y, z = mesh.meshgrid()
     phase = np.exp(1j * (k[0] * x + k[2] * z)) * np.ones((nz, 1, nx))
-    S = _cell_average_factor(k, mesh.dx)
+    S = cell_average_factor(k, mesh.dx)
     A = amplitude
     drho_g = (A * ev["drho_g"] * phase).real * S
     rho = 1.0 + drho_g
@@ -178,22 +165,22 @@ def streaming_box(
     pos0 = lattice_positions(mesh.shape, lower, dx, lattice, 0.0 if kernel == "cic" and lattice % 2 else 0.5)
     npart = pos0.shape[1]
     m = mu * 1.0 * mesh.cell_volume / lattice**2
-    cells = Cells(nx, 1, nz, 0, 0, 0, *dx, *lower, *box, False, 0.0, 0.0)
-    order = KERNELS[kernel]
     eps = 1e-4  # a small wave measures the kernel's transfer function T (linear in eps)
-    probe = _wrap(_displace(pos0, k, complex(eps)), lower, box, mesh.shape)
-    rho_p = deposit_density(probe, np.full(npart, m), cells, order, 0.0).reshape(nz, 1, nx)
+    probe = wrap_positions(_displace(pos0, k, complex(eps)), lower, box, mesh.shape)
+    rho_p = deposit_density(mesh, probe, np.full(npart, m), kernel)
     T = (2.0 * np.mean(rho_p * np.conj(phase)) / mu).real / eps
     amp_p = A * ev["drho_p"] * S / T
-    pos = _wrap(_displace(pos0, k, amp_p), lower, box, mesh.shape)
+    pos = wrap_positions(_displace(pos0, k, amp_p), lower, box, mesh.shape)
     ph = np.exp(1j * (k[0] * pos[0] + k[2] * pos[2]))
     vel = np.empty((3, npart))
     for a, key in enumerate(("wx", "wy", "wz")):
         vel[a] = V[a] + (A * ev[key] * eta_vk * ph).real  # relative to the shear (orbital advection)
     store = ParticleStore.create(pos, vel, 0, m)
     mode_numbers = (1, 0, 1 if k[2] > 0 else -1)
-    accel = (0.0 if gas_frame else -2.0 * eta_vk, 0.0, vz * eta_vk / t_stop)
-    kwargs = dict(acceleration=accel, gas_acceleration_z=-mu * vz * eta_vk / t_stop, mode=mode_numbers)
+    terms = [RotatingFrame(1.0, 1.5, relative_to_shear=True),
+             ConstantAcceleration(0.0 if gas_frame else -2.0 * eta_vk, 0.0, vz * eta_vk / t_stop)]
+    gas_terms = [GasConstantAcceleration(az=-mu * vz * eta_vk / t_stop)] if vz != 0.0 else []
+    kwargs = dict(particle_terms=terms, gas_terms=gas_terms, mode=mode_numbers)
     if cfg is not None:
         engine = particle_engine_from_config(cfg, gas, store, [t_stop], **kwargs)
     else:

@@ -14,6 +14,7 @@ data files and a preview of each CSV. A small inline script records how many ima
 from __future__ import annotations
 
 import html
+import inspect
 import json
 import sys
 import time
@@ -56,13 +57,15 @@ class FigureRecord:
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
 
 
-def _run_one(spec: FigureSpec, output: Path, quick: bool) -> FigureRecord:
+def _run_one(spec: FigureSpec, output: Path, quick: bool, extra: dict[str, Any]) -> FigureRecord:
     t0 = time.perf_counter()
+    accepted = inspect.signature(spec.function).parameters
+    kwargs = {k: v for k, v in extra.items() if k in accepted}
     files: list[Path] = []
     checks: list[Check] = []
     error = ""
     try:
-        files = list(spec.function(output, quick=quick))
+        files = list(spec.function(output, quick=quick, **kwargs))
         if spec.all_checks is not None:
             checks = list(spec.all_checks(output))
     except Exception as exc:  # a broken figure is shown as broken; the others still get made
@@ -80,14 +83,18 @@ def _run_one(spec: FigureSpec, output: Path, quick: bool) -> FigureRecord:
                         date=time.strftime("%Y-%m-%d %H:%M:%S"))
 
 
-def make_figures(names: Iterable[str], output: str | Path, quick: bool = True, log=None) -> list[FigureRecord]:
-    """Make the figures ``names`` into ``output``, with checks and manifests; then the index."""
+def make_figures(names: Iterable[str], output: str | Path, quick: bool = True, log=None,
+                 **extra: Any) -> list[FigureRecord]:
+    """Make the figures ``names`` into ``output``, with checks and manifests; then the index.
+
+    ``extra`` keyword arguments go to the figure functions that take them (``run=RUN``: the
+    figures drawn from a simulation use that run directory, ``dustygas reproduce --from RUN``)."""
     output = Path(output)
     specs = [get_figure(n) for n in names]
     (output / MANIFEST_DIR).mkdir(parents=True, exist_ok=True)
     records = []
     for spec in specs:
-        record = _run_one(spec, output, quick)
+        record = _run_one(spec, output, quick, extra)
         atomic_write_text(output / MANIFEST_DIR / f"{spec.name}.json", json.dumps(record.to_dict(), indent=1) + "\n")
         records.append(record)
         if log is not None:
