@@ -11,7 +11,7 @@ from foundation._cli import cli
 
 
 @pytest.mark.parametrize("args, fragment", [
-    (["si-linA", "--set", "scheme.integrator=rk3"], "particles need vl2"),
+    (["si-linA", "--set", "scheme.integrator=rk3"], "scheme.integrator = 'rk3' is not allowed: choose one of vl2"),
     (["si-linA", "--set", "particles.kernel=quartic"], "particles.kernel"),
     (["nsh", "--set", "problem.taus=[0.1, 1.0]"], "problem.taus has 2 species but problem.mu has 1"),
     (["si-settling", "--set", "problem.vz=down"], "problem.vz"),

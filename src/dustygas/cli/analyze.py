@@ -5,11 +5,13 @@ from __future__ import annotations
 import argparse
 import json
 
-HELP = "analyse a run directory (growth of the recorded mode; dust in stratified runs)"
+HELP = "analyse a run directory (growth of the recorded mode; dust in stratified runs; bound clumps)"
 DESCRIPTION = """Analyse a run directory.
 
   dustygas analyze growth runs/si-linA            growth rate, frequency, fit window
   dustygas analyze growth runs/si-linA --json     the same as a JSON object
+  dustygas analyze clumps RUN                     bound clumps and their mass function
+                                                  (dustygas analyze clumps --help)
 
 growth: fits ln|A| and arg A of the complex Fourier amplitude A(t) of the run's mode for the
 eight fields (gas drho_g ux uy uz, dust drho_p wx wy wz; written to history.h5 by the
@@ -53,12 +55,19 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         a.add_argument("--snapshot", type=int, action="append", metavar="N",
                        help="snapshot index (repeatable; default: the newest, or four spread over the run)")
         a.add_argument("--slab", type=float, default=0.03, metavar="DELTA", help="slab half-width in H (slabs)")
+    from . import analyze_clumps
+
+    analyze_clumps.add_arguments(sub)
 
 
 def main(args: argparse.Namespace) -> int:
     from ..analysis.growth import MODE_FIELDS, measure_growth, theory_for_run
     from ..errors import UserError
 
+    if args.analyze_command == "clumps":
+        from . import analyze_clumps
+
+        return analyze_clumps.main(args)
     if args.analyze_command in STRATIFIED:
         from ..analysis.outputs import analyze_stratified
 
@@ -66,7 +75,8 @@ def main(args: argparse.Namespace) -> int:
             print(path)
         return 0
     if args.analyze_command != "growth":
-        raise UserError(f"analyze: name a subcommand: growth, {', '.join(STRATIFIED)} (see dustygas analyze --help)")
+        raise UserError(f"analyze: name a subcommand: growth, {', '.join(STRATIFIED)}, clumps "
+                        f"(see dustygas analyze --help)")
     fit = measure_growth(args.run, window=args.window, fields=args.fields or MODE_FIELDS,
                          nonlinear=args.nonlinear, agree=args.agree)
     fit.theory = theory_for_run(args.run)

@@ -65,9 +65,13 @@ from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_
 from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
-__all__ = ["ParticleGridEngine", "DRAG_LAWS", "deposit_density"]
+__all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_density"]
 
 FACES = ("x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper")
+
+#: gas integrators the coupling supports: its drag is predicted and corrected with VL2's two
+#: stages (Bai & Stone 2010a, §2.3); the ``scheme.integrator`` of the particle problems offers these
+GAS_INTEGRATORS = ("vl2",)
 
 
 class ParticleGridEngine:
