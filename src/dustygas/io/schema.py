@@ -95,6 +95,9 @@ SNAPSHOT_FIELDS: dict[str, Quantity] = {
     "y": Quantity(LENGTH, "cell-centre coordinate along y (azimuthal)"),
     "z": Quantity(LENGTH, "cell-centre coordinate along z (vertical)"),
     "rho_p": Quantity(DENSITY, "dust (particle) mass density deposited on the mesh with the run's kernel"),
+    "rho_p_species": Quantity(DENSITY, "particle mass density of each species (species, z, y, x)"),
+    "phi_p": Quantity(SPECIFIC_ENERGY, "self-gravitational potential of the particles (solution of "
+                      "lap(Phi) = G~ rho_p; written once self-gravity is on)"),
     # Lagrangian particles of the grid engine (prefix particles/) and SPH particles
     "pos": Quantity(LENGTH, "particle position"),
     "vel": Quantity(VELOCITY, "particle velocity (grid engine: in the gas's frame, see the problem)"),
@@ -150,6 +153,12 @@ HISTORY_COLUMNS: dict[str, Quantity] = {
     "gas_vx": Quantity(VELOCITY, "mean gas velocity, x"),
     "gas_vy": Quantity(VELOCITY, "mean gas velocity, y"),
     "dust_vx": Quantity(VELOCITY, "mean particle velocity, x"),
+    "rho_p_max": Quantity(DENSITY, "largest particle density on the mesh"),
+    "particle_mass_lost": Quantity(MASS, "particle mass that left through the open faces (time integral)"),
+    "gravity_on": Quantity(ONE, "1 once particle self-gravity acts (t >= gravity.t_on), else 0"),
+    "gravity_energy": Quantity(ENERGY, "self-gravitational energy of the particles, W = 1/2 sum rho_p Phi V "
+                               "(0 before gravity.t_on; vacuum z: the planar mode's Phi = 2 pi G Sigma |z| makes "
+                               "a uniform layer's W positive)"),
 }
 
 #: History columns by pattern (first match wins): per-axis and per-species families.
@@ -157,6 +166,12 @@ HISTORY_PATTERNS: list[tuple[str, Quantity]] = [
     (r"(particle_|total_)?momentum_[xyz]", Quantity(MOMENTUM, "total momentum component")),
     (r"angular_momentum_[xyz]", Quantity(ANGULAR_MOMENTUM, "total angular momentum component")),
     (r"species_\d+_v[xyz]", Quantity(VELOCITY, "mean velocity of one particle species")),
+    (r"species_\d+_sigma_[xyz]", Quantity(VELOCITY, "velocity dispersion of one particle species")),
+    (r"species_\d+_mass", Quantity(MASS, "mass of one particle species")),
+    (r"species_\d+_(z_mean|scale_height)", Quantity(LENGTH, "mean height and scale height of one particle species")),
+    (r"(particle|gas)_terms_impulse_[xyz]", Quantity(MOMENTUM, "momentum the particle (gas) terms gave (time integral)")),
+    (r"particle_mass_lost_[xyz]_(lower|upper)", Quantity(MASS, "particle mass that left through one face")),
+    (r"particle_momentum_lost_[xyz]", Quantity(MOMENTUM, "particle momentum that left through the open faces")),
     (r"mode_drho_[gp]_(re|im)", Quantity(ONE, "Fourier amplitude of the relative density perturbation (real/imaginary part)")),
     (r"mode_[uw][xyz]_(re|im)", Quantity(VELOCITY, "Fourier amplitude of the gas (u) or dust (w) velocity (real/imaginary part)")),
 ]

@@ -437,7 +437,9 @@ class ParticleGridEngine:
         # 4. the trajectory field
         pred_dt = gas.stage_weight(0) * h
         nx, ny, nz = self.geometry.shape
-        margin = self._R + (2 if self.smooth else 0)
+        # the deposit reaches R rows beyond a particle's and the filter spreads it two more, which the
+        # z pass filters only 2 rows inside the range: R + 4 (R + 2 loses momentum near a thin layer)
+        margin = self._R + (4 if self.smooth else 0)
         rows = occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
         self.field_rows = rows
         if self._mesh_term is not None:

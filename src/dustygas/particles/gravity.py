@@ -41,7 +41,7 @@ from ..errors import SetupError
 from ..grid.gravity import PoissonSolver
 from .terms import MeshAcceleration
 
-__all__ = ["SelfGravity", "GRAVITY_Z"]
+__all__ = ["SelfGravity", "GRAVITY_Z", "gravity_boundaries"]
 
 #: vertical boundary of the potential
 GRAVITY_Z = ("auto", "periodic", "vacuum")
@@ -88,28 +88,8 @@ class SelfGravity(MeshAcceleration):
     def bind(self, engine) -> None:
         """Check the engine's axes and build the solver of its mesh (called by the engine)."""
         geom = engine.geometry
-        kinds = engine.boundary_kinds
         shape = tuple(int(n) for n in geom.shape)
-        bounds = []
-        for a in range(2):
-            if shape[a] > 1 and kinds[a] not in ("periodic", "shear-periodic"):
-                raise SetupError(f"self-gravity along {'xy'[a]}: particles.boundary_{'xy'[a]} = '{kinds[a]}' is not "
-                                 f"supported (the potential needs a periodic or shear-periodic {'xy'[a]})")
-            bounds.append(kinds[a] if shape[a] > 1 else "periodic")
-        if shape[1] > 1 and bounds[1] == "shear-periodic":
-            raise SetupError("self-gravity: only x can be shear-periodic")
-        if bounds[0] == "shear-periodic" and shape[1] == 1:
-            bounds[0] = "periodic"  # x-z box: the shear offset moves nothing along an inactive y
-        z = self.boundary_z
-        if z == "auto":
-            z = "periodic" if kinds[2] == "periodic" else "vacuum"
-        if shape[2] > 1 and z == "periodic" and kinds[2] != "periodic":
-            raise SetupError(f"{self.keys[1]} = 'periodic' with particles.boundary_z = '{kinds[2]}': a periodic "
-                             "potential needs periodic particles in z (use vacuum)")
-        if shape[2] == 1 and z == "vacuum":
-            z = "periodic"  # a 2D x-y box is a column uniform in z, not a razor-thin sheet
-        bounds.append(z)
-        self.boundaries = tuple(bounds)
+        self.boundaries = gravity_boundaries(shape, engine.boundary_kinds, self.boundary_z, self.keys[1])
         self.solver = PoissonSolver(shape, tuple(geom.box), self.g_tilde, self.boundaries, order=self.order, workers=None)
         self.field = np.zeros((3,) + tuple(reversed(shape)))
 
@@ -144,3 +124,36 @@ class SelfGravity(MeshAcceleration):
         """What ``dustygas analyze clumps`` reads: ``gravity_G`` (code units) and the set-up."""
         return {"gravity_G": self.G, "gravity_g_tilde": self.g_tilde, "gravity_t_on": self.t_on,
                 "gravity_boundaries": list(self.boundaries)}
+
+
+def gravity_boundaries(shape: tuple[int, int, int], particle_kinds: tuple[str, str, str], boundary_z: str = "auto",
+                       key: str = "gravity.boundary_z") -> tuple[str, str, str]:
+    """The potential's boundary per axis for particles with boundaries ``particle_kinds``
+    (one-line :class:`~dustygas.errors.SetupError` for an axis the solver cannot support).
+
+    >>> gravity_boundaries((32, 32, 48), ("shear-periodic", "periodic", "outflow"))
+    ('shear-periodic', 'periodic', 'vacuum')
+    """
+    bounds = []
+    for a in range(2):
+        if shape[a] > 1 and particle_kinds[a] not in ("periodic", "shear-periodic"):
+            raise SetupError(f"self-gravity along {'xy'[a]}: particles.boundary_{'xy'[a]} = '{particle_kinds[a]}' is "
+                             f"not supported (the potential needs a periodic or shear-periodic {'xy'[a]})")
+        bounds.append(particle_kinds[a] if shape[a] > 1 else "periodic")
+    if shape[1] > 1 and bounds[1] == "shear-periodic":
+        raise SetupError("self-gravity along y: particles.boundary_y = 'shear-periodic' is not supported (only x "
+                         "can be shear-periodic)")
+    if bounds[0] == "shear-periodic" and shape[1] == 1:
+        bounds[0] = "periodic"  # x-z box: the shear offset moves nothing along an inactive y
+    if boundary_z not in GRAVITY_Z:
+        raise SetupError(f"{key} = '{boundary_z}': choose one of {', '.join(GRAVITY_Z)}")
+    z = boundary_z
+    if z == "auto":
+        z = "periodic" if particle_kinds[2] == "periodic" else "vacuum"
+    if shape[2] > 1 and z == "periodic" and particle_kinds[2] != "periodic":
+        raise SetupError(f"{key} = 'periodic' with particles.boundary_z = '{particle_kinds[2]}': a periodic "
+                         "potential needs particles periodic in z (use vacuum)")
+    if shape[2] == 1:
+        z = "periodic"  # a 2D x-y box is a column uniform in z, not a razor-thin sheet
+    bounds.append(z)
+    return tuple(bounds)

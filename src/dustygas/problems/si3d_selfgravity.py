@@ -19,7 +19,8 @@ from __future__ import annotations
 
 from ..config import Param, with_defaults
 from ..errors import ConfigError
-from ..particles.gravity import GRAVITY_Z, SelfGravity
+from ..particles.gravity import GRAVITY_Z, SelfGravity, gravity_boundaries
+from ..particles.params import particle_boundaries
 from . import register
 from .si3d import ORBIT, SI3D
 
@@ -52,6 +53,9 @@ class SI3DSelfGravity(SI3D):
         if cfg.gravity.t_on >= cfg.run.tlim:
             raise ConfigError(f"gravity.t_on = {cfg.gravity.t_on:g}: the run ends before (run.tlim = "
                               f"{cfg.run.tlim:g}); lower gravity.t_on or raise run.tlim")
+        g = cfg.grid
+        kinds = particle_boundaries(cfg, ("shear-periodic", "periodic", cfg.problem.gas_boundary_z))
+        gravity_boundaries((g.nx, g.ny, g.nz), kinds, cfg.gravity.boundary_z)
 
     def particle_terms(self, cfg) -> list:
         g = cfg.gravity
