@@ -37,3 +37,32 @@ def assert_runs_identical(a: dict, b: dict) -> None:
                 assert physics_a == physics_b, (key, name)
                 continue
             assert np.array_equal(attrs_a[name], attrs_b[name]), (key, name)
+
+
+def kill_after_first_checkpoint_and_restart(problem: str, sets: list[str], cwd, reference, name: str = "killed"):
+    """``dustygas run problem`` (with ``--set`` ``sets``) into ``cwd/name``, killed with SIGKILL as
+    soon as its first checkpoint exists, then continued with ``dustygas run --restart``; returns
+    the run directory. Fails unless the run was killed before it had written all the snapshots
+    of the uninterrupted run ``reference``."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from foundation._cli import PRELUDE, cli_popen, env
+
+    args = [a for s in sets for a in ("--set", s)]
+    proc = cli_popen("run", problem, "-o", name, *args, cwd=cwd)
+    chk = cwd / name / "checkpoints"
+    deadline = time.time() + 1800
+    while time.time() < deadline and not list(chk.glob("chk_*.h5")) and proc.poll() is None:
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=60)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr.read()
+    killed = RunDirectory(cwd / name)
+    assert len(killed.checkpoints()) == 1 and len(killed.snapshots()) < len(RunDirectory(reference).snapshots())
+    again = subprocess.run([sys.executable, "-c", PRELUDE, "run", "--restart", name], cwd=cwd, env=env(),
+                           capture_output=True, text=True, timeout=1800)
+    assert again.returncode == 0, again.stderr
+    return cwd / name

@@ -1,8 +1,8 @@
 """The public Python API: what a script imports (``import dustygas as dg``).
 
 ==========================  =========================================================================
-run a problem               :func:`run`, :func:`restart`, :func:`problem_names`, :func:`get_problem`,
-                            :func:`problem_parameters`
+run a problem               :func:`run`, :func:`restart`, :func:`dry_run`, :func:`problem_names`,
+                            :func:`get_problem`, :func:`problem_parameters`
 read a run                  :func:`open_run` (xarray Datasets: ``.history``, ``.snapshot(i)``)
 export for other tools      :func:`export` (Athena++ athdf + XDMF, yt particles, Phantom, CSV)
 look at a run               :func:`plot_history`, :func:`plot_snapshot`, :func:`movie`
@@ -144,17 +144,17 @@ def restart(
 
 #: zone-cycles and particle-updates per second and core assumed by :func:`dry_run`'s cost (the
 #: si3d laptop run on the project machine, one thread; benchmarks/RESULTS.md)
-DRY_RUN_RATES = {"zone_cycles": 1.5e6}
+DRY_RUN_RATES: dict[str, float] = {"zone_cycles": 1.5e6}
 
 
 def dry_run(problem: str, config: Iterable[str | Path] = (), set: Iterable[str] = (),
-            data: Mapping | None = None) -> list[str]:
+            data: Mapping[str, Any] | None = None) -> list[str]:
     """Validate a configuration and describe what the run would need, without building it.
 
     Returns lines: the problem, cells and particles, memory, steps and the cost in core-hours
     at :data:`DRY_RUN_RATES` (problems without an ``estimate`` report only that they validate).
     """
-    prob = get_problem(problem)
+    prob = _get_problem(problem)
     cfg = prob.config(config, list(set), data)
     lines = [f"{problem}: configuration valid"]
     estimate = getattr(prob, "estimate", None)
@@ -169,8 +169,6 @@ def dry_run(problem: str, config: Iterable[str | Path] = (), set: Iterable[str] 
               f"cost ~{hours:,.0f} core-hours at {DRY_RUN_RATES['zone_cycles']:.2g} zone-cycles/s per core "
               f"(~{hours / 24 / 64:,.1f} days on 64 cores)"]
     return lines
-
-
 # ------------------------------------------------------------------------------------ reading
 
 

@@ -1,4 +1,4 @@
-"""Conservation of gas + particles (thesis eq. 4.25).
+"""Conservation of gas + particles (thesis eq. 4.25): momentum and mass.
 
 Random gas (density and velocity) and randomly placed particles of two species (one with a
 fixed stopping time, one with Epstein drag) exchange momentum through drag. The gas fluxes
@@ -11,7 +11,8 @@ of the particles with weights that sum to one inside the domain, so
   acceleration on the gas) it changes by exactly the impulse of those terms, which the
   history integrates (1e-12 relative; measured 1e-16);
 * with periodic z the total mass is constant to 1e-13 relative; with outflow z the mass that
-  left equals the particle mass recorded as lost through the two faces to 1e-12.
+  left (gas and particles) equals the mass recorded as lost through the two faces to 1e-12:
+  the particles that crossed them, and the time integral of the gas's face mass fluxes.
 """
 
 import numpy as np
@@ -104,3 +105,9 @@ def test_mass_is_conserved_with_periodic_z_and_lost_mass_is_recorded_with_outflo
     assert h["particle_mass_lost_z_lower"] > 0 and h["particle_mass_lost_z_upper"] > 0
     assert abs(h0["particle_mass"] - h["particle_mass"] - lost) < 1e-12 * h0["particle_mass"]
     assert lost == pytest.approx(h["particle_mass_lost_z_lower"] + h["particle_mass_lost_z_upper"], rel=1e-15)
+    # the gas: what left through the two z faces is the time integral of their mass fluxes
+    gas_lost = h["gas_mass_lost"]
+    assert abs(h["gas_mass_lost_z_lower"]) > 1e-3 * h0["mass"] and abs(h["gas_mass_lost_z_upper"]) > 1e-3 * h0["mass"]
+    assert abs(h0["mass"] - h["mass"] - gas_lost) < 1e-12 * h0["mass"]
+    total0, total = h0["mass"] + h0["particle_mass"], h["mass"] + h["particle_mass"]
+    assert abs(total0 - total - gas_lost - lost) < 1e-12 * total0

@@ -98,7 +98,8 @@ def test_cell_model_particle_follows_the_exact_local_solution(n):
     h = 0.02
     out_a = np.zeros(3)
     out_r = np.zeros((n, 3))
-    cell_model(rho_g, u0, fg, n, rho_s, vs, fs, ts, h, out_a, out_r, np.zeros((5, n)))
+    cell_model(rho_g, u0, fg, n, rho_s, vs, fs, ts, h, out_a, out_r, np.zeros((6, n)), np.zeros(n, dtype=np.int64),
+               np.zeros((n, 3)))
     np.testing.assert_allclose(out_a, (rho_g * fg + rho_s @ fs) / (rho_g + rho_s.sum()), rtol=1e-13)
     A = arrow_matrix(rho_g, rho_s, ts)
     for c in range(3):
@@ -120,7 +121,7 @@ def test_stiff_heavy_dust_relaxes_at_the_exact_rate():
         u0, V = np.array([0.0, 0.0, 0.0]), np.array([1.0, -0.5, 0.2])
         out_a, out_r = np.zeros(3), np.zeros((1, 3))
         cell_model(rho_g, u0, np.zeros(3), 1, np.array([eps]), V[None], np.zeros((1, 3)), np.array([ts]), h, out_a,
-                   out_r, np.zeros((5, 1)))
+                   out_r, np.zeros((6, 1)), np.zeros(1, dtype=np.int64), np.zeros((1, 3)))
         v = np.array([relax(V[c], ts, h, u0[c], 0.0, 0.0, out_r[0, c]) for c in range(3)])
         u = u0 - eps * (v - V)  # the gas gets minus the particle's impulse
         ratio = (v - u) / (V - u0)

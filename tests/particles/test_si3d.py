@@ -1,6 +1,6 @@
 """The stratified box ``si3d`` at toy size: restart, analyses and the thesis figures from its run.
 
-* A run stopped after 30 steps (the run loop checkpoints) and restarted with
+* A run killed with SIGKILL right after its checkpoint at t = 0.05 (of 0.3) and restarted with
   ``dustygas run --restart`` ends bit-identical to an uninterrupted one: every snapshot array
   (gas, every particle array, the dust density) and every history column.
 * ``dustygas analyze <kind>`` and ``dustygas reproduce fig... --from RUN`` write their PNG and
@@ -11,20 +11,16 @@
 """
 
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
-from _runs import assert_runs_identical, run_outputs
+from _runs import assert_runs_identical, kill_after_first_checkpoint_and_restart, run_outputs
 
 from dustygas import api
 from dustygas.analysis.stratified import read_snapshot, scale_height
 from dustygas.io.rundir import RunDirectory
 from dustygas.plot import read_table
-
-from foundation._cli import PRELUDE, env
 
 SETS = ["grid.nx=8", "grid.ny=8", "grid.nz=12", "problem.Hp=0.03", "run.tlim=0.3", "run.dt_snapshot=0.1",
         "run.dt_history=0.02", "run.checkpoint_wall=0"]
@@ -37,13 +33,10 @@ def si3d_run(tmp_path_factory):
     return path
 
 
-def test_stopped_and_restarted_si3d_is_bit_identical(si3d_run, tmp_path):
-    first = api.run("si3d", output=tmp_path / "stopped", set=SETS + ["run.max_cycles=30"])
-    assert first.status == "max_cycles"
-    again = subprocess.run([sys.executable, "-c", PRELUDE, "run", "--restart", "stopped", "--set", "run.max_cycles=0"],
-                           cwd=tmp_path, env=env(), capture_output=True, text=True, timeout=1800)
-    assert again.returncode == 0, again.stderr
-    ref, out = run_outputs(si3d_run), run_outputs(tmp_path / "stopped")
+def test_killed_and_restarted_si3d_is_bit_identical(si3d_run, tmp_path):
+    killed = kill_after_first_checkpoint_and_restart("si3d", SETS + ["run.dt_checkpoint=0.05"], tmp_path,
+                                                    si3d_run)
+    ref, out = run_outputs(si3d_run), run_outputs(killed)
     assert len(ref) == 5  # four snapshots and the history
     assert_runs_identical(ref, out)
 

@@ -10,20 +10,12 @@ run with SIGKILL right after its checkpoint at t = 3, restarts it with ``dustyga
 --restart`` and compares every snapshot and history array with the uninterrupted one.
 """
 
-import signal
-import subprocess
-import sys
-import time
-
 import pytest
 
-from _runs import assert_runs_identical, run_outputs
+from _runs import assert_runs_identical, kill_after_first_checkpoint_and_restart, run_outputs
 
 from dustygas import api
 from dustygas.analysis.growth import measure_growth
-from dustygas.io.rundir import RunDirectory
-
-from foundation._cli import PRELUDE, cli_popen, env
 
 LINA = 0.4190091323
 LINB = 0.0154862262
@@ -48,21 +40,8 @@ def test_lina_growth_within_one_percent(lina_run):
 
 @pytest.mark.slow
 def test_lina_killed_at_t3_and_restarted_is_bit_identical(lina_run, tmp_path):
-    args = [a for s in LINA_SETS for a in ("--set", s)]
-    proc = cli_popen("run", "si-linA", "-o", "killed", *args, cwd=tmp_path)
-    chk = tmp_path / "killed" / "checkpoints"
-    deadline = time.time() + 1800
-    while time.time() < deadline and not list(chk.glob("chk_*.h5")) and proc.poll() is None:
-        time.sleep(0.05)
-    proc.send_signal(signal.SIGKILL)
-    proc.wait(timeout=60)
-    assert proc.returncode == -signal.SIGKILL, proc.stderr.read()
-    rd = RunDirectory(tmp_path / "killed")
-    assert len(rd.checkpoints()) == 1 and len(rd.snapshots()) < len(RunDirectory(lina_run).snapshots())
-    again = subprocess.run([sys.executable, "-c", PRELUDE, "run", "--restart", "killed"], cwd=tmp_path, env=env(),
-                           capture_output=True, text=True, timeout=1800)
-    assert again.returncode == 0, again.stderr
-    assert_runs_identical(run_outputs(lina_run), run_outputs(tmp_path / "killed"))
+    killed = kill_after_first_checkpoint_and_restart("si-linA", LINA_SETS, tmp_path, lina_run)
+    assert_runs_identical(run_outputs(lina_run), run_outputs(killed))
 
 
 @pytest.mark.slow

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-HELP = "analyse a run directory (growth of the recorded mode; dust in stratified runs; bound clumps)"
+HELP = "analyse a run directory (growth of the recorded mode; bound clumps; dust in stratified runs)"
 DESCRIPTION = """Analyse a run directory.
 
   dustygas analyze growth runs/si-linA            growth rate, frequency, fit window
@@ -48,6 +48,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument("--fields", nargs="+", metavar="FIELD", help="fields to fit (default: all eight)")
     g.add_argument("--nonlinear", type=float, default=0.01, help="relative density amplitude that ends the window")
     g.add_argument("--agree", type=float, default=0.005, help="relative agreement of the fields that starts it")
+    from . import analyze_clumps
+
+    analyze_clumps.add_arguments(sub)
     for name in STRATIFIED:
         a = sub.add_parser(name, help=f"{name} of a stratified particle run (PNG + CSV)")
         a.add_argument("run", metavar="RUN", help="run directory")
@@ -55,9 +58,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         a.add_argument("--snapshot", type=int, action="append", metavar="N",
                        help="snapshot index (repeatable; default: the newest, or four spread over the run)")
         a.add_argument("--slab", type=float, default=0.03, metavar="DELTA", help="slab half-width in H (slabs)")
-    from . import analyze_clumps
-
-    analyze_clumps.add_arguments(sub)
 
 
 def main(args: argparse.Namespace) -> int:
@@ -75,8 +75,7 @@ def main(args: argparse.Namespace) -> int:
             print(path)
         return 0
     if args.analyze_command != "growth":
-        raise UserError(f"analyze: name a subcommand: growth, {', '.join(STRATIFIED)}, clumps "
-                        f"(see dustygas analyze --help)")
+        raise UserError(f"analyze: name a subcommand: growth, clumps, {', '.join(STRATIFIED)} (see dustygas analyze --help)")
     fit = measure_growth(args.run, window=args.window, fields=args.fields or MODE_FIELDS,
                          nonlinear=args.nonlinear, agree=args.agree)
     fit.theory = theory_for_run(args.run)

@@ -61,7 +61,8 @@ def main(args: argparse.Namespace) -> int:
             exp = c["expected"] if isinstance(c["expected"], str) else f"{c['expected']:.6g}"
             print(f"  {verdict} {c['name']}: {c['value']:.6g} vs {exp} ({c['tolerance']})", file=sys.stderr)
 
-    records = make_figures([s.name for s in specs], out, quick=not args.full, log=log, run=args.run)
+    extra = {"run": Path(args.run)} if args.run else {}
+    records = make_figures([s.name for s in specs], out, quick=not args.full, log=log, **extra)
     failed = [r.name for r in records if not r.passed]
     print(f"gallery: {out / 'index.html'} ({len(records)} figures"
           f"{', failed: ' + ' '.join(failed) if failed else ''})", file=sys.stderr)

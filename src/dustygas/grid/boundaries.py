@@ -363,6 +363,14 @@ def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, boo
 
 
 @njit(cache=True, error_model="numpy")
+def _field_ghost_pair(kind, m, n, g):
+    """Indices of the ``m``-th lower and upper ghost layers of a field and of the layers they copy
+    (a mirror image like a reflecting wall, else periodic)."""
+    src_kind = REFLECTING if kind == FIELD_MIRROR else PERIODIC
+    return (g - 1 - m, g + n + m, _source_index(src_kind, True, m, n, g), _source_index(src_kind, False, m, n, g))
+
+
+@njit(cache=True, error_model="numpy")
 def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, k_lo, k_hi) -> None:
     """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
 
@@ -376,36 +384,22 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
     """
     NZ, NY, NX, nvar = f.shape
     nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
-    if gz > 0:
-        for m in range(gz):
-            lo, hi = gz - 1 - m, gz + nz + m
-            if kinds[2] == FIELD_MIRROR:
-                slo, shi = gz + m, gz + nz - 1 - m
-            else:
-                slo, shi = gz - 1 - m + nz, gz + m
-            f[lo] = f[slo]
-            f[hi] = f[shi]
-    if gy > 0:
-        for m in range(gy):
-            lo, hi = gy - 1 - m, gy + ny + m
-            if kinds[1] == FIELD_MIRROR:
-                slo, shi = gy + m, gy + ny - 1 - m
-            else:
-                slo, shi = gy - 1 - m + ny, gy + m
-            for k in range(k_lo, k_hi):
-                f[k, lo] = f[k, slo]
-                f[k, hi] = f[k, shi]
+    for m in range(gz):
+        lo, hi, slo, shi = _field_ghost_pair(kinds[2], m, nz, gz)
+        f[lo] = f[slo]
+        f[hi] = f[shi]
+    for m in range(gy):
+        lo, hi, slo, shi = _field_ghost_pair(kinds[1], m, ny, gy)
+        for k in range(k_lo, k_hi):
+            f[k, lo] = f[k, slo]
+            f[k, hi] = f[k, shi]
     if gx > 0:
         shear = kinds[0] == FIELD_SHEAR and ny > 1
         col = np.empty(ny)
         out = np.empty(ny)
         work = np.empty(4 * ny + 19)
         for m in range(gx):
-            lo, hi = gx - 1 - m, gx + nx + m
-            if kinds[0] == FIELD_MIRROR:
-                slo, shi = gx + m, gx + nx - 1 - m
-            else:
-                slo, shi = gx - 1 - m + nx, gx + m
+            lo, hi, slo, shi = _field_ghost_pair(kinds[0], m, nx, gx)
             for k in range(k_lo, k_hi):
                 if not shear:
                     for j in range(NY):

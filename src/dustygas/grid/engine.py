@@ -23,7 +23,7 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError, UserError
-from .boundaries import fill_ghosts, make_boundaries
+from .boundaries import PERIODIC, fill_ghosts, make_boundaries
 from .diagnostics import domain_sums, max_signal_rate
 from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tables
 from .mesh import Mesh
@@ -177,9 +177,11 @@ class GridEngine:
         nz, ny, nx = mesh.array_shape
         self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
         self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
+        self._zflux = np.zeros((2, 4, mesh.shape[1], mesh.shape[0]))
         self._no_ext = np.zeros((3, 1, 1, 1))
-        #: time integrals [mass through the radial boundary, y-momentum from the source terms]
-        self.budget = np.zeros(2)
+        #: time integrals [mass through the radial boundary, y-momentum from the source terms,
+        #: mass out through the lower and the upper z face]
+        self.budget = np.zeros(4)
         self.t = 0.0
         self.cycle = 0
         self.work_units = mesh.ncells
@@ -258,7 +260,7 @@ class GridEngine:
         rate, bad = advance_gas(
             self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
             self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate, self._no_ext, False,
-            self._bflux, self.budget, numba.get_num_threads(),
+            self._bflux, self._zflux, self.budget, numba.get_num_threads(),
         )
         self._check(rate, bad)
         self.t += dt
@@ -302,7 +304,7 @@ class GridEngine:
         rate, bad = advance_gas(
             self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
             self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-            ext if use else self._no_ext, use, self._bflux, self.budget, numba.get_num_threads(),
+            ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget, numba.get_num_threads(),
         )
         if stage == nstage - 1:
             self._check(rate, bad)
@@ -346,6 +348,10 @@ class GridEngine:
         if self.shear_periodic or self._sources.active:
             out["radial_boundary_mass"] = float(self.budget[0])
             out["momentum_y_source"] = float(self.budget[1])
+        if self.mesh.active[2] and self._bc.z_lo != PERIODIC:
+            out["gas_mass_lost_z_lower"] = float(self.budget[2])
+            out["gas_mass_lost_z_upper"] = float(self.budget[3])
+            out["gas_mass_lost"] = float(self.budget[2] + self.budget[3])
         return {k: float(v) for k, v in out.items()}
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
@@ -368,5 +374,7 @@ class GridEngine:
         if u.shape != self.states[0][inner].shape:
             raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {self.states[0][inner].shape}")
         self.states[0][inner] = u
-        self.budget[:] = arrays["budget"]
+        budget = np.asarray(arrays["budget"])
+        self.budget[:] = 0.0  # checkpoints written before the z-face budget hold its first two entries
+        self.budget[: budget.size] = budget
         self._update_rate()

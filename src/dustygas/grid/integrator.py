@@ -50,7 +50,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import SHEAR_PERIODIC, correct_radial_items, fill_ghost_lines, ghost_lines
+from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_items, fill_ghost_lines, ghost_lines
 from .diagnostics import cell_rate, combine_rates
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
@@ -114,15 +114,17 @@ def integrator_tables(name: str) -> tuple[np.ndarray, np.ndarray]:
 
 @njit(cache=True, parallel=True, error_model="numpy")
 def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate,
-                ext, use_ext, bflux, budget, nthreads) -> tuple[float, int]:
+                ext, use_ext, bflux, zflux, budget, nthreads) -> tuple[float, int]:
     """Stages ``s_lo .. s_hi-1`` of the step from ``t`` to ``t + dt``, then (if ``finish``)
     orbital advection and the Courant rate of the new state.
 
     Each stage: ghost fill of its input at the stage time; one parallel sweep per active
     axis (the first adds the sources and ``ext`` if ``use_ext``); the shear-periodic flux
     correction; the budget. ``budget[0]`` accumulates the mass through the radial boundary,
-    ``budget[1]`` the y-momentum given by the rotating-frame source terms, each weighted
-    with the stage's share of the step. ``oa_rate`` is ``q Omega`` under orbital advection
+    ``budget[1]`` the y-momentum given by the rotating-frame source terms, ``budget[2]`` and
+    ``budget[3]`` the mass that left through the lower and upper z faces of a box that is not
+    periodic in z (the mass fluxes of the boundary faces, stored by the z sweep in ``zflux``,
+    ``(2, 4, ny, nx)``), each weighted with the stage's share of the step. ``oa_rate`` is ``q Omega`` under orbital advection
     (0: off). ``nthreads`` is the number of chunks the pencils are split into (results do not
     depend on it; numba cannot cache a function that asks for it itself).
 
@@ -136,6 +138,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     dvol = sp.dx * sp.dy * sp.dz
     shearing = bc.x_lo == SHEAR_PERIODIC
     remap = oa_rate != 0.0 and ny > 1
+    open_z = nz > 1 and bc.z_lo != PERIODIC
     last_axis = 2 if nz > 1 else (1 if ny > 1 else 0)
     # the Courant rate of the new state: per pencil of the step's last sweep (or per column of
     # the orbital-advection remap), plus the radial edge cells after their flux correction
@@ -175,11 +178,12 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
                 continue
             npen = pencil_count(axis, lay)
             nchunk = min(npen, nthreads)
-            store = shearing and axis == 0
+            store = (shearing and axis == 0) or (open_z and axis == 2)
+            faces = zflux if axis == 2 else bflux
             want_rate = finish and s == s_hi - 1 and axis == last_axis and not remap
             for c in prange(nchunk):
                 sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext,
-                              bflux, store, y_source, rates, bads, want_rate, shearing,
+                              faces, store, y_source, rates, bads, want_rate, shearing,
                               c * npen // nchunk, (c + 1) * npen // nchunk)
             first = False
         # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
@@ -198,6 +202,15 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
             for k in range(nz):
                 mass_flux += plane_flux[k]
             budget[0] += weight * dt * mass_flux * sp.dy * sp.dz
+        if open_z and weight != 0.0:  # mass flux F_z of the two faces: out is -F at the bottom, +F at the top
+            lower = 0.0
+            upper = 0.0
+            for j in range(ny):
+                for i in range(nx):
+                    lower -= zflux[0, 0, j, i]
+                    upper += zflux[1, 0, j, i]
+            budget[2] += weight * dt * lower * sp.dx * sp.dy
+            budget[3] += weight * dt * upper * sp.dx * sp.dy
         total = 0.0
         for p in range(y_source.shape[0]):
             total += y_source[p]

@@ -76,8 +76,10 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
     ext, use_ext
         External momentum source ``(3, nz, ny, nx)`` (domain cells) and whether to add it.
     bflux, store_bflux
-        ``(2, 4, nz, ny)``: if ``store_bflux`` (x sweeps only), the fluxes through the inner
-        and outer x faces are stored for the shear-periodic flux correction.
+        If ``store_bflux``, the fluxes through the first and last face of every pencil are
+        stored in ``bflux[0 or 1, variable, ib, ia]``: ``(2, 4, nz, ny)`` in x sweeps (the
+        shear-periodic flux correction), ``(2, 4, ny, nx)`` in z sweeps (the mass that leaves a
+        box open in z).
     y_source
         ``(npencil,)``: in the first sweep, each pencil's sum of the y-momentum source of the
         shearing box (without ``ext``), for the momentum budget.

@@ -95,7 +95,8 @@ SNAPSHOT_FIELDS: dict[str, Quantity] = {
     "y": Quantity(LENGTH, "cell-centre coordinate along y (azimuthal)"),
     "z": Quantity(LENGTH, "cell-centre coordinate along z (vertical)"),
     "rho_p": Quantity(DENSITY, "dust (particle) mass density deposited on the mesh with the run's kernel"),
-    "rho_p_species": Quantity(DENSITY, "particle mass density of each species (species, z, y, x)"),
+    "rho_p_species": Quantity(DENSITY, "dust density of each particle species (species, z, y, x; runs with "
+                                       "several species)"),
     "phi_p": Quantity(SPECIFIC_ENERGY, "self-gravitational potential of the particles (solution of "
                       "lap(Phi) = G~ rho_p; written once self-gravity is on)"),
     # Lagrangian particles of the grid engine (prefix particles/) and SPH particles
@@ -136,6 +137,10 @@ HISTORY_COLUMNS: dict[str, Quantity] = {
     "dust_mass": Quantity(MASS, "total dust mass"),
     "particle_mass": Quantity(MASS, "total mass of the Lagrangian particles"),
     "radial_boundary_mass": Quantity(MASS, "gas mass that left through the radial boundaries"),
+    "gas_mass_lost": Quantity(MASS, "gas mass that left through the open z faces (time integral of their mass "
+                                    "fluxes; negative: inflow)"),
+    "particle_mass_lost": Quantity(MASS, "mass of the particles that left through outflow faces"),
+    "rho_p_max": Quantity(DENSITY, "largest dust (particle) density on the mesh"),
     "kinetic_energy": Quantity(ENERGY, "total kinetic energy"),
     "thermal_energy": Quantity(ENERGY, "total thermal energy"),
     "potential_energy": Quantity(ENERGY, "total potential energy of external gravity"),
@@ -153,8 +158,6 @@ HISTORY_COLUMNS: dict[str, Quantity] = {
     "gas_vx": Quantity(VELOCITY, "mean gas velocity, x"),
     "gas_vy": Quantity(VELOCITY, "mean gas velocity, y"),
     "dust_vx": Quantity(VELOCITY, "mean particle velocity, x"),
-    "rho_p_max": Quantity(DENSITY, "largest particle density on the mesh"),
-    "particle_mass_lost": Quantity(MASS, "particle mass that left through the open faces (time integral)"),
     "gravity_on": Quantity(ONE, "1 once particle self-gravity acts (t >= gravity.t_on), else 0"),
     "gravity_energy": Quantity(ENERGY, "self-gravitational energy of the particles, W = 1/2 sum rho_p Phi V "
                                "(0 before gravity.t_on; vacuum z: the planar mode's Phi = 2 pi G Sigma |z| makes "
@@ -166,12 +169,16 @@ HISTORY_PATTERNS: list[tuple[str, Quantity]] = [
     (r"(particle_|total_)?momentum_[xyz]", Quantity(MOMENTUM, "total momentum component")),
     (r"angular_momentum_[xyz]", Quantity(ANGULAR_MOMENTUM, "total angular momentum component")),
     (r"species_\d+_v[xyz]", Quantity(VELOCITY, "mean velocity of one particle species")),
-    (r"species_\d+_sigma_[xyz]", Quantity(VELOCITY, "velocity dispersion of one particle species")),
-    (r"species_\d+_mass", Quantity(MASS, "mass of one particle species")),
-    (r"species_\d+_(z_mean|scale_height)", Quantity(LENGTH, "mean height and scale height of one particle species")),
-    (r"(particle|gas)_terms_impulse_[xyz]", Quantity(MOMENTUM, "momentum the particle (gas) terms gave (time integral)")),
-    (r"particle_mass_lost_[xyz]_(lower|upper)", Quantity(MASS, "particle mass that left through one face")),
-    (r"particle_momentum_lost_[xyz]", Quantity(MOMENTUM, "particle momentum that left through the open faces")),
+    (r"species_\d+_mass", Quantity(MASS, "total mass of one particle species")),
+    (r"species_\d+_z_mean", Quantity(LENGTH, "mass-weighted mean height of one particle species")),
+    (r"species_\d+_scale_height", Quantity(LENGTH, "particle scale height H_p (mass-weighted rms of z about its "
+                                                  "mean) of one species")),
+    (r"species_\d+_sigma_[xyz]", Quantity(VELOCITY, "mass-weighted velocity dispersion of one particle species")),
+    (r"gas_mass_lost_z_(lower|upper)", Quantity(MASS, "gas mass that left through one z face")),
+    (r"particle_mass_lost_[xyz]_(lower|upper)", Quantity(MASS, "mass of the particles that left through one face")),
+    (r"particle_momentum_lost_[xyz]", Quantity(MOMENTUM, "momentum carried out by the particles that left")),
+    (r"(particle|gas)_terms_impulse_[xyz]", Quantity(MOMENTUM, "impulse of the external force terms on the "
+                                                              "particles or the gas (time integral)")),
     (r"mode_drho_[gp]_(re|im)", Quantity(ONE, "Fourier amplitude of the relative density perturbation (real/imaginary part)")),
     (r"mode_[uw][xyz]_(re|im)", Quantity(VELOCITY, "Fourier amplitude of the gas (u) or dust (w) velocity (real/imaginary part)")),
 ]
@@ -218,6 +225,8 @@ def snapshot_dims(name: str, shape: tuple[int, ...], layout: str, grid_shape: tu
             return (name,)
         if grid_shape is not None and tuple(shape) == tuple(grid_shape):
             return ("z", "y", "x")
+        if name == "rho_p_species" and len(shape) == 4:
+            return ("species", "z", "y", "x")
         if grid_shape is not None and len(shape) == 4 and tuple(shape[1:]) == tuple(grid_shape):
             return (f"{name}_component", "z", "y", "x")
     if name.startswith("particles/"):

@@ -254,8 +254,8 @@ class ParticleGridEngine:
         W = 2 * self._R + 1
         self._keys = np.zeros(capacity, dtype=np.int64)
         self._order_work = np.zeros(capacity, dtype=np.int64)
-        self._scratch = np.zeros(capacity)
-        self._iscratch = np.zeros(capacity, dtype=np.int64)
+        self._fwork = np.zeros((7, capacity))
+        self._iwork = np.zeros((3, capacity), dtype=np.int64)
         self._wts = np.zeros((capacity, 3, W))
         self._values = np.zeros((capacity, 4))
         self._cols = np.zeros(capacity, dtype=np.int64)
@@ -358,7 +358,7 @@ class ParticleGridEngine:
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
         sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys, self._order_work,
-                     self._ptr, self._cell_start, self._scratch, self._iscratch)
+                     self._ptr, self._cell_start, self._fwork, self._iwork)
         stencil(pos, n, self._lay, self._sp, self._off, self._order, self._R, self._wts)
         shift = self.geometry.shear_offset(t)
         args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
@@ -628,7 +628,7 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     cell_start = np.zeros(ncell + 1, dtype=np.int64)
     p_, v_, s_, i_, m_ = store.buffers()
     sort_by_cell(p_, v_, s_, i_, m_, n, lay, sp, off, keys, np.zeros(n, dtype=np.int64), np.zeros(ncell, dtype=np.int64),
-                 cell_start, np.zeros(n), np.zeros(n, dtype=np.int64))
+                 cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
     wts = np.zeros((n, 3, 2 * R + 1))
     stencil(p_, n, lay, sp, off, order, R, wts)
     args = (n, lay, sp, pb, reach, order, 0.0, keys, wts, p_, cell_start)

@@ -147,28 +147,20 @@ def step_coefficients(ts: float, w2: float, h: float, out) -> None:
 
 
 @njit(cache=True, error_model="numpy")
-def _phi1(z: complex) -> complex:
-    """(e^z - 1)/z."""
-    if abs(z) < 0.1:
-        s = 1.0 + 0j
+def _phi(z: complex, k: int) -> complex:
+    """``φ_k(z) = (e^z - Σ_{j<k} z^j/j!)/z^k`` for ``k = 1, 2``: the Taylor series
+    ``Σ_j z^j/(j+k)!`` where the closed form would cancel."""
+    if abs(z) < 0.1 * k * k:
         term = 1.0 + 0j
-        for n in range(2, 12):
-            term = term * z / n
+        for j in range(2, k + 1):
+            term /= j
+        s = term
+        for j in range(1, 16):
+            term = term * z / (j + k)
             s += term
         return s
-    return (cmath.exp(z) - 1.0) / z
-
-
-@njit(cache=True, error_model="numpy")
-def _phi2(z: complex) -> complex:
-    """(e^z - 1 - z)/z^2."""
-    if abs(z) < 0.5:
-        s = 0.5 + 0j
-        term = 0.5 + 0j
-        for n in range(3, 18):
-            term = term * z / n
-            s += term
-        return s
+    if k == 1:
+        return (cmath.exp(z) - 1.0) / z
     return (cmath.exp(z) - 1.0 - z) / (z * z)
 
 
@@ -200,8 +192,8 @@ def oscillator_step(z0, v0, ts, w2, h, beta0, beta1):
         sw = math.sin(om * h) / om if om * h > 1e-8 else h * (1.0 - (om * h) ** 2 / 6.0)
         ediv = complex(math.exp(-gam * h) * sw, 0.0)
     e2 = cmath.exp(lam2 * h)
-    f1_1, f1_2 = _phi1(lam1 * h), _phi1(lam2 * h)
-    f2_1, f2_2 = _phi2(lam1 * h), _phi2(lam2 * h)
+    f1_1, f1_2 = _phi(lam1 * h, 1), _phi(lam2 * h, 1)
+    f2_1, f2_2 = _phi(lam1 * h, 2), _phi(lam2 * h, 2)
     # divided differences: from (λ F_k)[λ1, λ2] h = F_{k-1}[λ1, λ2] with the product rule,
     # dividing by the fast eigenvalue λ_2
     f1div = (ediv / h - f1_1) / lam2

@@ -165,14 +165,14 @@ def compact(pos, vel, species, pid, mass, n, keep) -> int:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, scratch, iscratch) -> None:
+def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork) -> None:
     """Put particles ``0 .. n-1`` into canonical order (module docstring) and fill ``cell_start``.
 
     ``lay``, ``sp``, ``off``: the block (:mod:`dustygas.grid.mesh`; ``sp.x0`` the global origin).
     ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
     ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
-    ``scratch`` (float, >= n) and ``iscratch`` (int64, >= n) hold one array at a time while it
-    is permuted. The histogram and its prefix sum are serial (``O(N + ncell)``); computing the
+    ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
+    pass, one copy-back pass). The histogram and its prefix sum are serial (``O(N + ncell)``); computing the
     keys, permuting the arrays and ordering each cell by ``pid`` run in parallel.
     """
     nx, ny, nz = lay.nx, lay.ny, lay.nz
@@ -215,28 +215,23 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
                 order[r + 1] = order[r]
                 r -= 1
             order[r + 1] = v
-    for a in range(3):
-        for p in prange(n):
-            scratch[p] = pos[a, order[p]]
-        for p in prange(n):
-            pos[a, p] = scratch[p]
-        for p in prange(n):
-            scratch[p] = vel[a, order[p]]
-        for p in prange(n):
-            vel[a, p] = scratch[p]
-    for p in prange(n):
-        scratch[p] = mass[order[p]]
-    for p in prange(n):
-        mass[p] = scratch[p]
-    for p in prange(n):
-        iscratch[p] = pid[order[p]]
-    for p in prange(n):
-        pid[p] = iscratch[p]
-    for p in prange(n):
-        iscratch[p] = species[order[p]]
-    for p in prange(n):
-        species[p] = iscratch[p]
-    for p in prange(n):
-        iscratch[p] = keys[order[p]]
-    for p in prange(n):
-        keys[p] = iscratch[p]
+    nchunk = min(max(n, 1), 64)
+    for c in prange(nchunk):  # gather every array in the new order ...
+        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+            o = order[p]
+            for a in range(3):
+                fwork[a, p] = pos[a, o]
+                fwork[3 + a, p] = vel[a, o]
+            fwork[6, p] = mass[o]
+            iwork[0, p] = pid[o]
+            iwork[1, p] = species[o]
+            iwork[2, p] = keys[o]
+    for c in prange(nchunk):  # ... and copy it back
+        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+            for a in range(3):
+                pos[a, p] = fwork[a, p]
+                vel[a, p] = fwork[3 + a, p]
+            mass[p] = fwork[6, p]
+            pid[p] = iwork[0, p]
+            species[p] = iwork[1, p]
+            keys[p] = iwork[2, p]

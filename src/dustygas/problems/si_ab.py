@@ -25,7 +25,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import Param, with_defaults
-from ..errors import ConfigError
 from ..grid import GridEngine, Mesh
 from ..particles import ParticleStore, RotatingFrame
 from ..particles.params import PARTICLES, particle_engine_from_config
@@ -58,12 +57,6 @@ class SINonlinear(Problem):
             "seed": Param(1, "random seed of the particle positions", min=0),
         },
     }
-
-    def validate(self, cfg) -> None:
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
-        if cfg.grid.ny > 1 and cfg.scheme.cfl > 1.0 / 3.0:
-            raise ConfigError(f"scheme.cfl = {cfg.scheme.cfl:g}: a 3D box needs cfl <= 1/3")
 
     def build(self, cfg):
         from ..physics import nsh_velocities

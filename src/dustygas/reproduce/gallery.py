@@ -57,9 +57,10 @@ class FigureRecord:
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
 
 
-def _run_one(spec: FigureSpec, output: Path, quick: bool, run: Path | None = None) -> FigureRecord:
+def _run_one(spec: FigureSpec, output: Path, quick: bool, extra: dict[str, Any]) -> FigureRecord:
     t0 = time.perf_counter()
-    kwargs = {"run": Path(run)} if run is not None and "run" in inspect.signature(spec.function).parameters else {}
+    accepted = inspect.signature(spec.function).parameters
+    kwargs = {k: v for k, v in extra.items() if k in accepted}
     files: list[Path] = []
     checks: list[Check] = []
     error = ""
@@ -83,18 +84,17 @@ def _run_one(spec: FigureSpec, output: Path, quick: bool, run: Path | None = Non
 
 
 def make_figures(names: Iterable[str], output: str | Path, quick: bool = True, log=None,
-                 run: str | Path | None = None) -> list[FigureRecord]:
+                 **extra: Any) -> list[FigureRecord]:
     """Make the figures ``names`` into ``output``, with checks and manifests; then the index.
 
-    ``run`` is a finished run directory handed to the figures that come from a simulation (those
-    whose function takes ``run``); the others ignore it.
-    """
+    ``extra`` keyword arguments go to the figure functions that take them (``run=RUN``: the
+    figures drawn from a simulation use that run directory, ``dustygas reproduce --from RUN``)."""
     output = Path(output)
     specs = [get_figure(n) for n in names]
     (output / MANIFEST_DIR).mkdir(parents=True, exist_ok=True)
     records = []
     for spec in specs:
-        record = _run_one(spec, output, quick, run)
+        record = _run_one(spec, output, quick, extra)
         atomic_write_text(output / MANIFEST_DIR / f"{spec.name}.json", json.dumps(record.to_dict(), indent=1) + "\n")
         records.append(record)
         if log is not None:

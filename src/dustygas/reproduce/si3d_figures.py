@@ -1,9 +1,11 @@
 """Thesis Figs 4.7-4.10 and the analogues of Figs 1.10 and 1.13 from a stratified particle run.
 
 The thesis's Athena run (§4.5, Fig 4.7 caption) is ``dustygas run si3d-thesis``; these figures
-come from the laptop preset ``si3d`` (the same physics at 32 × 32 × 48 cells), run once into
-``<output>/runs/si3d`` and reused by every figure (about 45 minutes on two cores), or from any
-finished run given with ``dustygas reproduce ... --from RUN``:
+come from the laptop preset ``si3d`` (the same physics at 32 × 32 × 48 cells; ``dustygas
+reproduce --full``), run once into ``<output>/runs/si3d`` and reused by every figure (about an
+hour of a quiet core), or from any finished run given with ``dustygas reproduce ... --from
+RUN``. The quick default (``reproduce --all`` included) runs the same 30 orbits at half the
+resolution, 16 × 16 × 24 (a sixteenth of the cost), into ``<output>/runs/si3d-quick``:
 
 * Fig 4.7 -- particles near the midplane (``|z| < 0.03 H``) and near two boundaries, coloured by
   the dust density, at the end of the run;
@@ -26,23 +28,28 @@ from . import figure
 SLAB = 0.03  # H: the slab half-width of thesis Figs 4.7-4.9
 
 
-def si3d_run(output: Path, run: Path | None = None) -> Path:
+#: the quick default: the si3d preset at half its resolution
+QUICK = ("grid.nx=16", "grid.ny=16", "grid.nz=24")
+
+
+def si3d_run(output: Path, run: Path | None = None, quick: bool = True) -> Path:
     """The run directory behind the figures: ``run`` if given, else the ``si3d`` preset in
-    ``output/runs/si3d`` (run, or continued from its checkpoint, if not finished)."""
+    ``output/runs/si3d`` (``quick``: at :data:`QUICK` in ``output/runs/si3d-quick``), run, or
+    continued from its checkpoint, if not finished."""
     from .. import api
     from ..io.rundir import RunDirectory
 
     Path(output).mkdir(parents=True, exist_ok=True)
     if run is not None:
         return Path(run)
-    path = Path(output) / "runs" / "si3d"
+    path = Path(output) / "runs" / ("si3d-quick" if quick else "si3d")
     rd = RunDirectory(path)
     if rd.history_file.exists() and "finished:" in (rd.log_file.read_text() if rd.log_file.exists() else ""):
         return path
     if rd.checkpoints():
         api.restart(path, progress=None)
     else:
-        api.run("si3d", output=path, overwrite=True, progress=None)
+        api.run("si3d", output=path, overwrite=True, progress=None, set=QUICK if quick else ())
     return path
 
 
@@ -55,22 +62,22 @@ def _snaps(run: Path, which: list[float]):
 
 
 @figure("fig4.7", "Dust particles near the midplane and the boundaries, coloured by density (si3d run)",
-        cost="45 min (shared si3d run)")
+        cost="5 min (shared si3d run; --full: 1 h)")
 def fig4_7(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..plot.particles import slab_figure
 
-    path = si3d_run(output, run)
+    path = si3d_run(output, run, quick)
     (snap,) = _snaps(path, [1.0])
     return slab_figure(snap, Path(output) / "fig4_7.png", "cube", SLAB,
                        f"Fig 4.7: {path.name}, dust near the midplane and two boundaries", z_shown=0.10)
 
 
 @figure("fig4.8", "Midplane slab |z| < 0.03 H of the dust (x-y), halfway and at the end (si3d run)",
-        cost="45 min (shared si3d run)")
+        cost="5 min (shared si3d run; --full: 1 h)")
 def fig4_8(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..plot.particles import slab_figure
 
-    path = si3d_run(output, run)
+    path = si3d_run(output, run, quick)
     out = []
     for tag, snap in zip(("a", "b"), _snaps(path, [0.5, 1.0])):
         out += slab_figure(snap, Path(output) / f"fig4_8{tag}.png", "xy", SLAB, f"Fig 4.8{tag}: {path.name}")
@@ -78,11 +85,11 @@ def fig4_8(output: Path, quick: bool = True, run: Path | None = None) -> list[Pa
 
 
 @figure("fig4.9", "Azimuthal slab |y| < 0.03 H of the dust (x-z), at the start and at the end (si3d run)",
-        cost="45 min (shared si3d run)")
+        cost="5 min (shared si3d run; --full: 1 h)")
 def fig4_9(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..plot.particles import slab_figure
 
-    path = si3d_run(output, run)
+    path = si3d_run(output, run, quick)
     out = []
     for tag, snap in zip(("a", "b"), _snaps(path, [0.0, 1.0])):
         out += slab_figure(snap, Path(output) / f"fig4_9{tag}.png", "xz", SLAB, f"Fig 4.9{tag}: {path.name}")
@@ -90,39 +97,39 @@ def fig4_9(output: Path, quick: bool = True, run: Path | None = None) -> list[Pa
 
 
 @figure("fig4.10", "Dust surface density and its 2D FFT; the dominant angle theta_k(t) (si3d run)",
-        cost="45 min (shared si3d run)")
+        cost="5 min (shared si3d run; --full: 1 h)")
 def fig4_10(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..analysis.stratified import read_snapshot
     from ..io.rundir import RunDirectory
     from ..plot.particles import surface_density_figure
 
-    path = si3d_run(output, run)
+    path = si3d_run(output, run, quick)
     every = [read_snapshot(path, i) for i in range(len(RunDirectory(path).snapshots()))]
     return surface_density_figure(_snaps(path, [1 / 3, 2 / 3, 1.0]), Path(output) / "fig4_10.png",
                                   f"Fig 4.10: {path.name}, surface density and |FFT|", every=every)
 
 
 @figure("fig1.10", "Maximum dust density versus time (Johansen et al. 2007 analogue, si3d run)",
-        cost="45 min (shared si3d run)")
+        cost="5 min (shared si3d run; --full: 1 h)")
 def fig1_10(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..analysis.stratified import read_series, read_snapshot
     from ..plot.particles import series_figure
 
-    path = si3d_run(output, run)
+    path = si3d_run(output, run, quick)
     snap = read_snapshot(path, -1)
     return series_figure(read_series(path), Path(output) / "fig1_10.png", "max_density",
                          f"Fig 1.10 analogue: {path.name} (no self-gravity)", area=snap.box[0] * snap.box[1])
 
 
 @figure("fig1.13", "Particle scale height of every species versus time (Bai & Stone 2010b analogue, si3d run)",
-        cost="45 min (shared si3d run)")
+        cost="5 min (shared si3d run; --full: 1 h)")
 def fig1_13(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..analysis.stratified import read_series
     from ..config import load_toml
     from ..io.rundir import RunDirectory
     from ..plot.particles import series_figure
 
-    path = si3d_run(output, run)
+    path = si3d_run(output, run, quick)
     cfg = load_toml(RunDirectory(path).config_file)
     taus = cfg.get("problem", {}).get("taus", [])
     names = [f"τs = {t:.3g}" for t in taus]
