@@ -607,16 +607,18 @@ class ParticleGridEngine:
 
 
 def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
-                    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic")) -> np.ndarray:
+                    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic"),
+                    shear_offset: float = 0.0) -> np.ndarray:
     """Mass density ``(nz, ny, nx)`` of particles at ``pos`` (3, N) on ``mesh`` with ``kernel``
-    (no shear; for set-ups and tests: the deposit the engine uses, without a gas engine)."""
+    (for set-ups, analyses and tests: the deposit the engine uses, without a gas engine; a
+    ``shear-periodic`` x puts the radial images ``shear_offset`` along y)."""
     from ..grid.mesh import Mesh  # noqa: F401  (type only)
 
     pos = np.asarray(pos, dtype=np.float64)
     n = pos.shape[1]
     store = ParticleStore.create(pos, np.zeros((3, n)), 0, mass)
     active = tuple(s > 1 for s in mesh.shape)
-    gas_kinds = tuple("periodic" if b == "periodic" else "outflow" for b in boundaries)
+    gas_kinds = tuple(b if b in ("periodic", "shear-periodic") else "outflow" for b in boundaries)
     pb = make_particle_boundaries(tuple(boundaries), gas_kinds, active, 0.0, 0.0)
     order = KERNELS[kernel]
     R = KERNEL_REACH[order]
@@ -631,7 +633,7 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
                  cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
     wts = np.zeros((n, 3, 2 * R + 1))
     stencil(p_, n, lay, sp, off, order, R, wts)
-    args = (n, lay, sp, pb, reach, order, 0.0, keys, wts, p_, cell_start)
+    args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
     cap = max(16, n // 2)
     while True:
         img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)
