@@ -37,20 +37,9 @@ QUICK = ("grid.nx=16", "grid.ny=16", "grid.nz=24", "gravity.t_on=0", "gravity.g_
 def selfgravity_run(output: Path, run: Path | None = None, quick: bool = True) -> Path:
     """``run`` if given, else ``si3d-selfgravity`` in ``output/runs/`` (quick: :data:`QUICK`), run
     or continued from its checkpoint if not finished."""
-    from .. import api
-    from ..io.rundir import RunDirectory
+    from .si3d_figures import cached_run
 
-    if run is not None:
-        return Path(run)
-    path = Path(output) / "runs" / ("si3d-selfgravity-quick" if quick else "si3d-selfgravity")
-    rd = RunDirectory(path)
-    if rd.history_file.exists() and "finished:" in (rd.log_file.read_text() if rd.log_file.exists() else ""):
-        return path
-    if rd.checkpoints():
-        api.restart(path, progress=None)
-    else:
-        api.run("si3d-selfgravity", output=path, overwrite=True, progress=None, set=QUICK if quick else ())
-    return path
+    return cached_run("si3d-selfgravity", output, run, quick, QUICK)
 
 
 @figure("planetesimal-mass-function",
