@@ -82,7 +82,8 @@ def planetesimal_mass_function(output: Path, quick: bool = True, run: Path | Non
     atomic_write_text(js, json.dumps(summary, indent=1) + "\n")
     fig, ax = plt.subplots(figsize=(5.5, 4.2))
     if len(cat):
-        ax.step(m, n, where="post", color="k", label=f"{len(cat)} bound clumps, t = {result.time:.3g}")
+        ax.step(m[::-1], n[::-1], where="pre", color="k", marker="o", ms=3,
+                label=f"{len(cat)} bound clumps, t = {result.time:.3g}")
     if fits:
         grid = np.geomspace(m.min(), m.max(), 100)
         pl, tr = fits["power-law"], fits["truncated-power-law"]
