@@ -175,6 +175,8 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--athena", required=True, help="Athena 4.2 binary built for par_strat3d (serial)")
     ap.add_argument("--settled", type=Path, help="si3d run directory whose newest checkpoint is the settled state")
+    ap.add_argument("--initial-layer", action="store_true",
+                    help="without --settled: time (c) on the si3d preset's initial layer (H_p = 0.02 H)")
     ap.add_argument("--cycles", type=int, default=300, help="cycles per timing (default 300)")
     ap.add_argument("--repeat", type=int, default=3, help="timings per code, the best counts (default 3)")
     args = ap.parse_args()
@@ -195,13 +197,13 @@ def main() -> int:
     print(f"ratio (a): zone-cycles per cpu-second x{cpu_rate / a['zone_cycles']:.2f}; cpu time per unit "
           f"simulated time x{(1 / a_dt / a['zone_cycles']) / (1 / d_dt / cpu_rate):.2f} in dustygas's favour")
     # (c) two threads against one on the settled state
-    if args.settled is not None:
-        eng = settled_engine(args.settled)
+    if args.settled is not None or args.initial_layer:
+        eng = settled_engine(args.settled) if args.settled is not None else dustygas_engine([])
         cells = eng.work_units
         steps = max(args.cycles // 3, 20)
         t_settled = eng.t
         best = step_times(eng, (1, 2), steps, args.repeat)
-        print(f"settled {args.settled.name} t = {t_settled:.4g} ({cells} cells, {eng.particles.n} particles): "
+        print(f"{'settled ' + args.settled.name if args.settled else 'si3d initial layer'} t = {t_settled:.4g} ({cells} cells, {eng.particles.n} particles): "
               f"1 thread {cells * steps / best[1][0]:.4g}, 2 threads {cells * steps / best[2][0]:.4g} "
               f"zone-cycles/wall-s, ratio (c) x{best[1][0] / best[2][0]:.2f}  load {load()}")
     return 0

@@ -3,10 +3,12 @@
 NSH: uniform gas and particle lattices in the NSH equilibrium of
 :func:`dustygas.physics.nsh_velocities_multi`, ten orbits in a shear-periodic 2D x-z box with
 the full azimuthal velocity stored (particles crossing the radial boundary change v_y by
-q Ω L_x). The equilibrium is an exact fixed point of the discrete scheme, so what is left is
-round-off accumulated over 12,600 steps: measured at most 3.8e-13 relative on every mean
-velocity (gas and each species, x and y; 1.6e-15 with the exponential drag integrator);
-tolerance 2e-12.
+q Ω L_x). With τ_s = 0.1 alone the equilibrium is an exact fixed point of the discrete scheme,
+so what is left is round-off accumulated over 12,600 steps: tolerance 2e-12 relative on every
+mean velocity (gas and each species, x and y). With τ_s = 1 particles the redesigned push
+keeps the equilibrium only to second order in the step: a steady offset, reached within one
+orbit, of 3.7e-5 at Courant 0.4 and 9.2e-6 at 0.2 (8², 3 orbits), 9.1e-6 at this test's
+step; tolerance 2e-5. (The former push kept every case to round-off, 3.8e-13.)
 
 Dusty box: the relative velocity of uniform gas and dust decays as exp(-t/t_s) with the
 mixture stopping time;
@@ -32,14 +34,14 @@ def run_to_end(eng, tlim):
     return eng
 
 
-@pytest.mark.parametrize("taus, mu, extra", [
-    ([0.1], [1.0], []),
-    ([1.0], [0.2], []),
-    ([0.1, 1.0], [0.5, 0.5], []),
+@pytest.mark.parametrize("taus, mu, extra, tol", [
+    ([0.1], [1.0], [], 2e-12),
+    ([1.0], [0.2], [], 2e-5),
+    ([0.1, 1.0], [0.5, 0.5], [], 2e-5),
     ([1.0], [0.2], ["problem.orbital_advection=true", "problem.pressure_frame=particles",
-                    "particles.kernel=cic"]),
+                    "particles.kernel=cic"], 2e-5),
 ])
-def test_nsh_drift_holds_for_ten_orbits(taus, mu, extra):
+def test_nsh_drift_holds_for_ten_orbits(taus, mu, extra, tol):
     prob = get_problem("nsh")
     cfg = prob.config(overrides=[f"problem.taus={taus}", f"problem.mu={mu}", "grid.nx=8", "grid.nz=8"] + extra)
     assert cfg.run.tlim == pytest.approx(20 * math.pi)
@@ -50,7 +52,7 @@ def test_nsh_drift_holds_for_ten_orbits(taus, mu, extra):
     errors = [h["gas_vx"] / eq.gas_vx - 1, h["gas_vy"] / (eq.gas_vy + boost) - 1]
     for s in range(len(taus)):
         errors += [h[f"species_{s}_vx"] / eq.dust_vx[s] - 1, h[f"species_{s}_vy"] / (eq.dust_vy[s] + boost) - 1]
-    assert max(abs(e) for e in errors) < 2e-12, errors
+    assert max(abs(e) for e in errors) < tol, errors
     # particles did cross the radial boundary (|V_x| t > L_x) for the fast drifters
     if max(taus) >= 1.0:
         assert abs(eq.dust_vx.min()) * 0.05 * cfg.run.tlim > cfg.grid.lx
