@@ -14,6 +14,7 @@ The public API is :mod:`dustygas.api`, re-exported here (``import dustygas as dg
 
 from ._version import __version__
 from .api import (
+    dry_run,
     export,
     figure_names,
     get_problem,
@@ -30,6 +31,6 @@ from .api import (
     run,
 )
 
-__all__ = ["__version__", "run", "restart", "problem_names", "get_problem", "problem_parameters", "open_run",
+__all__ = ["__version__", "run", "restart", "dry_run", "problem_names", "get_problem", "problem_parameters", "open_run",
            "export", "plot_history", "plot_snapshot", "movie", "measure_growth", "growth_theory",
            "figure_names", "reproduce_figures"]
