@@ -32,20 +32,11 @@ and the stage interface of :class:`~dustygas.grid.GridEngine` (``stage_input``,
 ``advance_stage``).
 """
 
-from pathlib import Path
-
-from ..grid._kernel_cache import ensure_fresh_cache
-
-ensure_fresh_cache(Path(__file__).resolve().parent, (Path(__file__).resolve().parents[1] / "physics" / "drag.py",
-                                                     Path(__file__).resolve().parents[1] / "grid" / "boundaries.py",
-                                                     Path(__file__).resolve().parents[1] / "grid" / "remap.py",
-                                                     Path(__file__).resolve().parents[1] / "grid" / "mesh.py"))
-
-from .coupling import ParticleGridEngine  # noqa: E402
-from .drag import DRAG_LAWS  # noqa: E402
-from .interp import KERNELS  # noqa: E402
-from .store import ParticleStore  # noqa: E402
-from .terms import (ConstantAcceleration, GasConstantAcceleration, GasMeshAcceleration, MeshAcceleration,  # noqa: E402
+from .coupling import ParticleGridEngine
+from .drag import DRAG_LAWS
+from .interp import KERNELS
+from .store import ParticleStore
+from .terms import (ConstantAcceleration, GasConstantAcceleration, GasMeshAcceleration, MeshAcceleration,
                     RotatingFrame, VerticalGravity)
 
 __all__ = ["ParticleGridEngine", "ParticleStore", "KERNELS", "DRAG_LAWS", "RotatingFrame", "VerticalGravity",
