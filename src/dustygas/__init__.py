@@ -18,6 +18,7 @@ from ._version import __version__
 _install_numba_cache_guard()  # before any kernel module is imported (see dustygas._numba_cache)
 
 from .api import (
+    dry_run,
     export,
     figure_names,
     get_problem,
@@ -34,6 +35,6 @@ from .api import (
     run,
 )
 
-__all__ = ["__version__", "run", "restart", "problem_names", "get_problem", "problem_parameters", "open_run",
+__all__ = ["__version__", "run", "restart", "dry_run", "problem_names", "get_problem", "problem_parameters", "open_run",
            "export", "plot_history", "plot_snapshot", "movie", "measure_growth", "growth_theory",
            "figure_names", "reproduce_figures"]

@@ -107,15 +107,19 @@ def mesh_density(pos: np.ndarray, mass: np.ndarray, *, cells: tuple[int, int, in
                  shear_offset: float, shear: bool = True) -> np.ndarray:
     """Particle density ``(nz, ny, nx)`` by TSC on the mesh of ``cells`` filling ``box`` (centred
     on the origin), with shear-periodic radial images if ``shear``."""
-    from ..particles.interp import TSC, Cells
-    from ..particles.push import deposit_density
+    from ..grid import Mesh
+    from ..particles.coupling import deposit_density
 
     (nx, ny, nz), (lx, ly, lz) = cells, box
     lx, ly, lz = (v if n > 1 else 1.0 for v, n in ((lx, nx), (ly, ny), (lz, nz)))
-    lower = tuple(-0.5 * v if n > 1 else 0.0 for v, n in ((lx, nx), (ly, ny), (lz, nz)))
-    c = Cells(nx, ny, nz, 0, 0, 0, lx / nx, ly / ny, lz / nz, *lower, lx, ly, lz, bool(shear), 0.0, 0.0)
-    rho = deposit_density(np.ascontiguousarray(pos), np.ascontiguousarray(mass), c, TSC, float(shear_offset))
-    return rho.reshape(nz, ny, nx)
+    mesh = Mesh((nx, ny, nz), (lx, ly, lz))
+    kinds = ("shear-periodic" if shear and ny > 1 else "periodic", "periodic", "periodic")
+    pos = np.array(pos, dtype=np.float64)
+    for a, n in enumerate((nx, ny, nz)):  # positions are inside the box; inactive axes at 0
+        if n == 1:
+            pos[a] = 0.0
+    return deposit_density(mesh, pos, np.ascontiguousarray(mass, dtype=np.float64), "tsc", kinds,
+                           float(shear_offset))
 
 
 # ---------------------------------------------------------------------------- step 2

@@ -4,9 +4,10 @@ Models of the differential mass function above ``M_min`` (the smallest mass fitt
 
 * power law, ``dN/dM ∝ M^{-p}`` (Simon et al. 2016, ApJ 822, 55, p ≈ 1.6; the thesis's q),
   normalised ``f(M) = (p - 1) M_min^{p-1} M^{-p}``. Its maximum-likelihood slope is closed-form
-  (Clauset, Shalizi & Newman 2009, SIAM Rev. 51, 661, eq. 3.1):
+  (Clauset, Shalizi & Newman 2009, SIAM Rev. 51, 661, eq. 3.1), used here with the factor
+  that removes its bias, ``(n - 1)/n`` (``(n - 2)/n`` when ``M_min`` is the sample's smallest mass):
 
-  .. math:: \\hat p = 1 + n \\Big/ \\sum_i \\ln(M_i / M_{\\min});
+  .. math:: \\hat p = 1 + (n - 1) \\Big/ \\sum_i \\ln(M_i / M_{\\min});
 
 * exponentially truncated power law, ``dN/dM ∝ M^{-p} e^{-M/M_e}`` (Abod et al. 2019, ApJ 883,
   192: p ≈ 1.3 with a truncation mass), normalised by
@@ -89,9 +90,17 @@ class MassFunctionFit:
         return self.n * np.array([upper_incomplete_gamma(1.0 - p, v / me) for v in np.atleast_1d(m)]).reshape(m.shape) / z
 
 
-def _power_law_slope(logs: np.ndarray) -> np.ndarray:
-    """Closed-form MLE from ``ln(M/M_min)`` along the last axis."""
-    return 1.0 + logs.shape[-1] / logs.sum(axis=-1)
+def _power_law_slope(logs: np.ndarray, fitted_min: bool = False) -> np.ndarray:
+    """Unbiased closed-form slope from ``ln(M/M_min)`` along the last axis.
+
+    ``S = Σ ln(M_i/M_min)`` of ``n`` masses above a known ``M_min`` is a Gamma(n, p - 1)
+    variable, so the MLE ``1 + n/S`` is biased high by ``(p - 1)/(n - 1)``; ``1 + (n - 1)/S``
+    is unbiased (Clauset et al. 2009, §3.1). With ``M_min`` the sample's own smallest mass
+    (``fitted_min``) one term is zero and the other ``n - 1`` are again independent
+    (memorylessness of the exponential ``ln(M/M_min)``): ``1 + (n - 2)/S``.
+    """
+    n = logs.shape[-1]
+    return 1.0 + (n - (2.0 if fitted_min else 1.0)) / logs.sum(axis=-1)
 
 
 def _select(masses, m_min):
@@ -108,13 +117,15 @@ def _select(masses, m_min):
 def fit_power_law(masses: np.ndarray, m_min: float | None = None, bootstrap: int = 200,
                   seed: int = 0) -> MassFunctionFit:
     """Maximum-likelihood power law above ``m_min`` (default: the smallest mass)."""
+    fitted_min = m_min is None
     m, m_min = _select(masses, m_min)
     logs = np.log(m / m_min)
-    p = float(_power_law_slope(logs))
+    p = float(_power_law_slope(logs, fitted_min))
     n = m.size
     lnl = n * math.log((p - 1.0) / m_min) - p * logs.sum()
     rng = np.random.default_rng(seed)
-    boot = _power_law_slope(logs[rng.integers(0, n, (bootstrap, n))]) if bootstrap else np.array([np.nan])
+    boot = (_power_law_slope(logs[rng.integers(0, n, (bootstrap, n))], fitted_min) if bootstrap
+            else np.array([np.nan]))
     return MassFunctionFit("power-law", {"p": p}, {"p": float(np.std(boot, ddof=1)) if bootstrap > 1 else math.nan},
                            lnl, n, m_min)
 

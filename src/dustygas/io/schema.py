@@ -97,6 +97,8 @@ SNAPSHOT_FIELDS: dict[str, Quantity] = {
     "rho_p": Quantity(DENSITY, "dust (particle) mass density deposited on the mesh with the run's kernel"),
     "rho_p_species": Quantity(DENSITY, "dust density of each particle species (species, z, y, x; runs with "
                                        "several species)"),
+    "phi_p": Quantity(SPECIFIC_ENERGY, "self-gravitational potential of the particles (solution of "
+                      "lap(Phi) = G~ rho_p; written once self-gravity is on)"),
     # Lagrangian particles of the grid engine (prefix particles/) and SPH particles
     "pos": Quantity(LENGTH, "particle position"),
     "vel": Quantity(VELOCITY, "particle velocity (grid engine: in the gas's frame, see the problem)"),
@@ -156,6 +158,10 @@ HISTORY_COLUMNS: dict[str, Quantity] = {
     "gas_vx": Quantity(VELOCITY, "mean gas velocity, x"),
     "gas_vy": Quantity(VELOCITY, "mean gas velocity, y"),
     "dust_vx": Quantity(VELOCITY, "mean particle velocity, x"),
+    "gravity_on": Quantity(ONE, "1 once particle self-gravity acts (t >= gravity.t_on), else 0"),
+    "gravity_energy": Quantity(ENERGY, "self-gravitational energy of the particles, W = 1/2 sum rho_p Phi V "
+                               "(0 before gravity.t_on; vacuum z: the planar mode's Phi = 2 pi G Sigma |z| makes "
+                               "a uniform layer's W positive)"),
 }
 
 #: History columns by pattern (first match wins): per-axis and per-species families.

@@ -178,6 +178,9 @@ class ParticleGridEngine:
         if self.forces.gravity_z > 0 and not active[2]:
             raise SetupError("vertical gravity on the particles needs an active z axis (nz > 1)")
         self._mesh_term = next((t for t in self.particle_terms if isinstance(t, MeshAcceleration)), None)
+        #: z rows [k_lo, k_hi) of the fields the particles gather this step (a mesh term may
+        #: restrict its work to them)
+        self.field_rows = (0, gas.geometry.shape[2])
         # species table
         codes = np.array([DRAG_LAWS[law] for law in laws], dtype=np.int64)
         grain = np.where(codes == EPSTEIN, epstein_grain_size(t_stop, 1.0, rho_ref, gas.cs, 1.0), 0.0)
@@ -243,6 +246,9 @@ class ParticleGridEngine:
         self._check_inside()
         self._vmax = np.max(np.abs(particles.vel), axis=1) if particles.n else np.zeros(3)
         self.work_units = self._ncell
+        for term in self.particle_terms:
+            if hasattr(term, "bind"):
+                term.bind(self)
 
     # ------------------------------------------------------------------ set-up helpers
     def _allocate(self, capacity: int) -> None:
@@ -430,13 +436,16 @@ class ParticleGridEngine:
         u_half = gas.stage_input(1)
         t_half = t + 0.5 * h
         # 4. the trajectory field
+        pred_dt = gas.stage_weight(0) * h
+        nx, ny, nz = self.geometry.shape
+        # the deposit reaches R rows beyond a particle's and the filter spreads it two more, which the
+        # z pass filters only 2 rows inside the range: R + 4 (R + 2 loses momentum near a thin layer)
+        margin = self._R + (4 if self.smooth else 0)
+        rows = occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
+        self.field_rows = rows
         if self._mesh_term is not None:
             self._mesh_term.update(self, u_half[(0,) + self.mesh.interior()], t_half)
             self._mesh_field[...] = self._mesh_term.field
-        pred_dt = gas.stage_weight(0) * h
-        nx, ny, nz = self.geometry.shape
-        margin = self._R + (2 if self.smooth else 0)
-        rows = occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
         cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
                           self.nspecies, self.species, self.forces, self._mesh_field, self._shear_rate, self.feedback,
                           self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
@@ -464,6 +473,18 @@ class ParticleGridEngine:
                 self.gas_terms_impulse += (ext.sum(axis=(1, 2, 3)) - before) * h * self.mesh.cell_volume
         gas.advance_stage(1, h, ext if use_ext else None)
         self._exchange(t + h)
+
+    def prepared_particle_density(self) -> np.ndarray:
+        """Particle mass density ``(nz, ny, nx)`` of the prepared (sorted, weighted) particles,
+        the deposit of the drag problem (no grid-scale filter): for a mesh term's ``update``."""
+        if self.feedback:
+            return self._dep1[..., 0::4].sum(axis=-1)
+        p = self.particles
+        pos, vel, species, pid, mass = p.buffers()
+        dust_values(vel, species, mass, p.n, self._inv_vol, False, self._values, self._cols)
+        self._rho_p[...] = 0.0
+        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._zero_cols, -1, 0)
+        return self._rho_p[..., 0].copy()
 
     # ------------------------------------------------------------------ outputs
     def dust_density(self, per_species: bool = False) -> np.ndarray:
@@ -522,6 +543,9 @@ class ParticleGridEngine:
                     out[f"species_{s}_{key}"] = value
             rho_p = self.dust_density()
             out["rho_p_max"] = float(rho_p.max())
+        for term in self.particle_terms:
+            if hasattr(term, "history"):
+                out.update(term.history(self, self.dust_density()))
         if self.mode is not None:
             for name, value in zip(MODE_FIELDS, self.mode_amplitudes()):
                 out[f"mode_{name}_re"] = float(value.real)
@@ -535,6 +559,9 @@ class ParticleGridEngine:
         if self.mode is not None:
             attrs["mode"] = list(self.mode)
             attrs["mode_k"] = self._k.tolist()
+        for term in self.particle_terms:
+            if hasattr(term, "attrs"):
+                attrs.update(term.attrs())
         return attrs
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
@@ -545,6 +572,9 @@ class ParticleGridEngine:
             arrays["rho_p_species"] = rho_s
         for name, value in self.particles.arrays().items():
             arrays[f"particles/{name}"] = value
+        for term in self.particle_terms:
+            if hasattr(term, "snapshot"):
+                arrays.update(term.snapshot(self, arrays["rho_p"]))
         return arrays, {**attrs, **self._attrs()}
 
     def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
@@ -578,16 +608,18 @@ class ParticleGridEngine:
 
 
 def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
-                    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic")) -> np.ndarray:
+                    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic"),
+                    shear_offset: float = 0.0) -> np.ndarray:
     """Mass density ``(nz, ny, nx)`` of particles at ``pos`` (3, N) on ``mesh`` with ``kernel``
-    (no shear; for set-ups and tests: the deposit the engine uses, without a gas engine)."""
+    (for set-ups, analyses and tests: the deposit the engine uses, without a gas engine; a
+    ``shear-periodic`` x puts the radial images ``shear_offset`` along y)."""
     from ..grid.mesh import Mesh  # noqa: F401  (type only)
 
     pos = np.asarray(pos, dtype=np.float64)
     n = pos.shape[1]
     store = ParticleStore.create(pos, np.zeros((3, n)), 0, mass)
     active = tuple(s > 1 for s in mesh.shape)
-    gas_kinds = tuple("periodic" if b == "periodic" else "outflow" for b in boundaries)
+    gas_kinds = tuple(b if b in ("periodic", "shear-periodic") else "outflow" for b in boundaries)
     pb = make_particle_boundaries(tuple(boundaries), gas_kinds, active, 0.0, 0.0)
     order = KERNELS[kernel]
     R = KERNEL_REACH[order]
@@ -602,7 +634,7 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
                  cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
     wts = np.zeros((n, 3, 2 * R + 1))
     stencil(p_, n, lay, sp, off, order, R, wts)
-    args = (n, lay, sp, pb, reach, order, 0.0, keys, wts, p_, cell_start)
+    args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
     cap = max(16, n // 2)
     while True:
         img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)

@@ -205,8 +205,11 @@ class SI3D(Problem):
             mass.append(np.full(per, masses[sp] * sigma_g * area / per))
         store = ParticleStore.create(np.concatenate(pos, axis=1), np.concatenate(vel, axis=1),
                                      np.concatenate(species), np.concatenate(mass))
-        terms = [RotatingFrame(1.0, 1.5, relative_to_shear=p.orbital_advection), VerticalGravity(1.0)]
-        return particle_engine_from_config(cfg, gas, store, list(taus), particle_terms=terms)
+        return particle_engine_from_config(cfg, gas, store, list(taus), particle_terms=self.particle_terms(cfg))
+
+    def particle_terms(self, cfg) -> list:
+        """The forces on the particles: the rotating frame and vertical gravity."""
+        return [RotatingFrame(1.0, 1.5, relative_to_shear=cfg.problem.orbital_advection), VerticalGravity(1.0)]
 
 
 preset("si3d-thesis", SI3D, "Thesis Fig 4.7 exactly: 256x256x384 cells, 1.8e7 particles (validate with --dry-run).",

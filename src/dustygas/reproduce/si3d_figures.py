@@ -36,20 +36,27 @@ def si3d_run(output: Path, run: Path | None = None, quick: bool = True) -> Path:
     """The run directory behind the figures: ``run`` if given, else the ``si3d`` preset in
     ``output/runs/si3d`` (``quick``: at :data:`QUICK` in ``output/runs/si3d-quick``), run, or
     continued from its checkpoint, if not finished."""
+    return cached_run("si3d", output, run, quick, QUICK)
+
+
+def cached_run(problem: str, output: Path, run: Path | None, quick: bool, quick_set=()) -> Path:
+    """``run`` if given, else problem ``problem`` in ``output/runs/<problem>`` (``quick``: with the
+    overrides ``quick_set``, in ``output/runs/<problem>-quick``), run, or continued from its
+    checkpoint, if not finished."""
     from .. import api
     from ..io.rundir import RunDirectory
 
     Path(output).mkdir(parents=True, exist_ok=True)
     if run is not None:
         return Path(run)
-    path = Path(output) / "runs" / ("si3d-quick" if quick else "si3d")
+    path = Path(output) / "runs" / (f"{problem}-quick" if quick else problem)
     rd = RunDirectory(path)
     if rd.history_file.exists() and "finished:" in (rd.log_file.read_text() if rd.log_file.exists() else ""):
         return path
     if rd.checkpoints():
         api.restart(path, progress=None)
     else:
-        api.run("si3d", output=path, overwrite=True, progress=None, set=QUICK if quick else ())
+        api.run(problem, output=path, overwrite=True, progress=None, set=tuple(quick_set) if quick else ())
     return path
 
 

@@ -251,24 +251,28 @@ class PoissonSolver:
         return phi[oz:oz + nz, oy:oy + ny, ox:ox + nx].copy()
 
     def acceleration(self, rho: np.ndarray, shear_offset: float = 0.0, out: np.ndarray | None = None,
-                     occupied_only: bool = False) -> np.ndarray:
+                     occupied_only: bool = False, layers: tuple[int, int] | None = None) -> np.ndarray:
         """Gravitational acceleration ``-∇Φ`` ``(3, nz, ny, nx)`` at the cell centres (0 along
         inactive axes), by centred differences of :attr:`order` of the potential.
 
         ``occupied_only`` (vacuum z): compute it only in the layers between the lowest and the
         highest that hold mass -- all a particle's assignment stencil reaches when ``rho`` is
         the particles' own deposit -- and set the other layers to NaN. A settled dust layer
-        fills a fraction of the box's height, and the solve costs that fraction.
+        fills a fraction of the box's height, and the solve costs that fraction. ``layers =
+        (k0, k1)`` (vacuum z) names those layers instead; they must hold all the mass.
         """
         nx, ny, nz = self.shape
         if out is None:
             out = np.empty((3, nz, ny, nx))
         active = tuple(n > 1 for n in self.shape)
         k0, k1 = 0, nz
-        if occupied_only and self.vacuum_z and nz > 1:
+        if (occupied_only or layers is not None) and self.vacuum_z and nz > 1:
             rho = self._check(rho)
-            filled = np.flatnonzero(np.any(rho != 0.0, axis=(1, 2)))
-            k0, k1 = (int(filled[0]), int(filled[-1]) + 1) if filled.size else (0, 0)
+            if layers is not None:
+                k0, k1 = max(int(layers[0]), 0), min(int(layers[1]), nz)
+            else:
+                filled = np.flatnonzero(np.any(rho != 0.0, axis=(1, 2)))
+                k0, k1 = (int(filled[0]), int(filled[-1]) + 1) if filled.size else (0, 0)
             out[:, :k0] = np.nan
             out[:, k1:] = np.nan
             if k1 == k0:
