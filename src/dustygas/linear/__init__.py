@@ -24,7 +24,7 @@ Public API
 >>> m = fastest_mode(StreamingParams(taus=0.1, mu=3.0, kx=30, kz=30, drag="yj07"))   # YJ07 linA
 >>> round(m.growth_rate, 7), round(m.frequency, 7)
 (0.4190204, 0.3480127)
->>> float(growth_rate(0.1, 3.0, 30.0, 30.0)).__round__(10)                  # consistent drag
+>>> float(growth_rate(taus=0.1, mu=3.0, kx=30.0, kz=30.0)).__round__(10)      # consistent drag
 0.4190091323
 
 Modules: :mod:`~dustygas.linear.operator` (the equations), :mod:`~dustygas.linear.modes`

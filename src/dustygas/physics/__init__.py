@@ -60,7 +60,7 @@ from .drag import (
     stopping_time,
     thermal_speed,
 )
-from .equilibrium import NSHEquilibrium, nsh_velocities, nsh_velocities_multi
+from .equilibrium import NSHEquilibrium, nsh_velocities, nsh_velocities_moments, nsh_velocities_multi
 from .growth import (
     alpha_tilde,
     drift_size,
@@ -85,6 +85,7 @@ __all__ = [
     "NSHEquilibrium",
     "nsh_velocities",
     "nsh_velocities_multi",
+    "nsh_velocities_moments",
     # settling
     "settling_time",
     "steady_settling_velocity",

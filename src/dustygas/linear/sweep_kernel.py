@@ -1,0 +1,369 @@
+"""Compiled integration of shearing waves for parameter sweeps (thesis §4.6.2, eq. 4.35).
+
+One shearing wave obeys dX/dt = L(k(t)) X with k_x(t) = k_x0 + (3/2) k_y t
+(:mod:`dustygas.linear.shearing_wave`, which integrates it with :func:`scipy.integrate.solve_ivp`
+and serves as the independent reference of the tests). A sweep integrates 10⁴–10⁶ of them, so
+here the whole integration of a chunk of waves is one compiled loop:
+
+* the explicit embedded Runge–Kutta pair of Dormand & Prince (1980), 5th order with a 4th-order
+  error estimate, and the step-size controller of Hairer, Nørsett & Wanner (1993, §II.4, the
+  PI controller of their code DOPRI5: exponents 0.2 − 0.75 β and β = 0.04, safety 0.9, step
+  ratio in [0.2, 10]); the error norm is the largest component of |err|/(atol + rtol·|y|);
+* every accepted step is checked for a maximum of the energy E(t) inside it (dE/dt changes
+  sign between its ends); there the cubic Hermite interpolant of the state (values and
+  derivatives at both ends, error O(h⁴)) is maximised by golden-section search, so the peak
+  amplification is not limited to the step grid;
+* the step lands exactly on the start and end of the averaging window;
+* the compressible operator is affine in t (every k_x-dependent entry is linear in k_x(t)), so
+  it is stored once per wave as sparse triplets L(t) = A + t B (≈ 40 non-zero entries of 64 for
+  one species) instead of being rebuilt at every stage.
+
+The drag terms make the system stiff for τ_s ≪ 1 (rate 1/τ_s) and sound waves make it
+oscillatory (frequency c_s|k|): an explicit method needs h ≲ 3/max(c_s|k|, (1 + μ)/τ_s), which
+the controller finds by itself. The work per wave therefore grows with c_s|k| t_end and
+(1 + μ) t_end/τ_s; the sweep records the accepted steps of every wave.
+
+Energy (module :mod:`dustygas.linear.shearing_wave`): E = ½(|u|² + c_s²|δρ_g|² + Σ_j μ_j|w_j|²);
+in the internal variables (h = c_s δρ_g, or the two in-plane gas amplitudes a_1, a_2 in the
+incompressible limit) it is ½ Σ_i e_i |x_i|² with weights e_i ∈ {0, 1, μ_j}.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from .shearing_wave import SHEAR_RATE, _build
+
+__all__ = ["INITIAL_STATES", "integrate_chunk", "RESULT_FIELDS"]
+
+#: name -> code of the initial states of a sweep
+INITIAL_STATES = {"fastest": 0, "vortical": 1, "dust": 2}
+
+#: per-wave outputs of :func:`integrate_chunk`, in the order of its ``out`` rows
+RESULT_FIELDS = ("energy_peak", "t_peak", "energy_final", "dust_final", "mean_growth", "steps", "failed")
+
+# Dormand & Prince (1980) coefficients
+_C2, _C3, _C4, _C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
+_A21 = 0.2
+_A31, _A32 = 3.0 / 40.0, 9.0 / 40.0
+_A41, _A42, _A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+_A51, _A52, _A53, _A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+_A61, _A62, _A63, _A64, _A65 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0
+_B1, _B3, _B4, _B5, _B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
+_E1, _E3, _E4, _E5, _E6, _E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0, 22.0 / 525.0,
+                                -1.0 / 40.0)
+_GOLDEN = 0.3819660112501051
+
+
+@numba.njit(cache=True)
+def _affine_operator(kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, rows, cols, a, b):
+    """L(t) = A + t B (exact for the compressible operator, affine in k_x(t)) as sparse triplets.
+
+    Returns the number of non-zero entries written to ``rows, cols, a, b``.
+    """
+    n = _build(0.0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    A = L[:n, :n].copy()
+    _build(1.0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    nnz = 0
+    for i in range(n):
+        for j in range(n):
+            bij = L[i, j] - A[i, j]
+            if A[i, j] != 0.0 or bij != 0.0:
+                rows[nnz] = i
+                cols[nnz] = j
+                a[nnz] = A[i, j]
+                b[nnz] = bij
+                nnz += 1
+    return nnz
+
+
+@numba.njit(cache=True)
+def _rhs_affine(t, y, n, nnz, rows, cols, a, b, f):
+    for i in range(n):
+        f[i] = 0.0
+    for q in range(nnz):
+        f[rows[q]] += (a[q] + t * b[q]) * y[cols[q]]
+
+
+@numba.njit(cache=True)
+def _rhs(t, y, n, affine, nnz, rows, cols, a, b, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, f):
+    if affine:
+        _rhs_affine(t, y, n, nnz, rows, cols, a, b, f)
+        return
+    _build(t, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    for i in range(n):
+        acc = 0.0j
+        for j in range(n):
+            acc += L[i, j] * y[j]
+        f[i] = acc
+
+
+@numba.njit(cache=True)
+def _energy(y, e, n):
+    s = 0.0
+    for i in range(n):
+        s += e[i] * (y[i].real * y[i].real + y[i].imag * y[i].imag)
+    return 0.5 * s
+
+
+@numba.njit(cache=True)
+def _denergy(y, f, e, n):
+    """dE/dt = Σ e_i Re(conj(y_i) f_i)."""
+    s = 0.0
+    for i in range(n):
+        s += e[i] * (y[i].real * f[i].real + y[i].imag * f[i].imag)
+    return s
+
+
+@numba.njit(cache=True)
+def _hermite_energy(s, h, y0, f0, y1, f1, e, n):
+    """E at t0 + s h on the cubic Hermite interpolant of the step (0 <= s <= 1)."""
+    h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s)
+    h10 = s * (1.0 - s) * (1.0 - s)
+    h01 = s * s * (3.0 - 2.0 * s)
+    h11 = s * s * (s - 1.0)
+    acc = 0.0
+    for i in range(n):
+        v = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
+        acc += e[i] * (v.real * v.real + v.imag * v.imag)
+    return 0.5 * acc
+
+
+@numba.njit(cache=True)
+def _step_peak(h, y0, f0, y1, f1, e, n):
+    """(s, E) of the maximum of E inside a step whose ends bracket it (golden section in s)."""
+    a, b = 0.0, 1.0
+    x1 = a + _GOLDEN * (b - a)
+    x2 = b - _GOLDEN * (b - a)
+    g1 = _hermite_energy(x1, h, y0, f0, y1, f1, e, n)
+    g2 = _hermite_energy(x2, h, y0, f0, y1, f1, e, n)
+    for _ in range(48):  # bracket shrinks 0.618^48 ~ 1e-10
+        if g1 > g2:
+            b = x2
+            x2, g2 = x1, g1
+            x1 = a + _GOLDEN * (b - a)
+            g1 = _hermite_energy(x1, h, y0, f0, y1, f1, e, n)
+        else:
+            a = x1
+            x1, g1 = x2, g2
+            x2 = b - _GOLDEN * (b - a)
+            g2 = _hermite_energy(x2, h, y0, f0, y1, f1, e, n)
+    return (x1, g1) if g1 > g2 else (x2, g2)
+
+
+@numba.njit(cache=True)
+def _initial_state(code, t0, n, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
+    """Initial state in the internal variables; returns False if it cannot be built."""
+    nsp = T.shape[0]
+    g0 = n - 4 * nsp
+    for i in range(n):
+        y[i] = 0.0
+    if code == 0:  # fastest eigenmode of L(k(t0))
+        _build(t0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+        A = np.ascontiguousarray(L[:n, :n])
+        for i in range(n):
+            for j in range(n):
+                if not math.isfinite(A[i, j].real) or not math.isfinite(A[i, j].imag):
+                    return False
+        w, v = np.linalg.eig(A)
+        best = 0
+        for i in range(1, n):
+            if w[i].real > w[best].real:
+                best = i
+        for i in range(n):
+            y[i] = v[i, best]
+        return True
+    if code == 1:  # vortical gas wave: u along z_hat x k_hat (in plane), no density, dust at rest
+        kx = kx0 + SHEAR_RATE * ky * t0
+        kh = math.sqrt(kx * kx + ky * ky)
+        if kh == 0.0:
+            return False
+        if g0 == 2:  # incompressible: a_1 along e_1 = z_hat x k / |z_hat x k|
+            y[0] = 1.0
+        else:
+            y[1] = -ky / kh
+            y[2] = kx / kh
+        return True
+    for j in range(nsp):  # code 2: dust density only
+        y[g0 + 4 * j] = 1.0
+    return True
+
+
+@numba.njit(cache=True)
+def _dust_density(y, M, g0, nsp):
+    """Total dust-density perturbation Σ_j μ_j δρ_j / Σ_j μ_j (complex)."""
+    num = 0.0j
+    den = 0.0
+    for j in range(nsp):
+        num += M[j] * y[g0 + 4 * j]
+        den += M[j]
+    return num / den if den > 0.0 else 0.0j
+
+
+@numba.njit(cache=True)
+def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz,
+               gamma, beta, res):
+    """One wave from t0 to t1; fills ``res`` in the order of :data:`RESULT_FIELDS`."""
+    nsp = T.shape[0]
+    nmax = 4 + 4 * nsp
+    L = np.zeros((nmax, nmax), dtype=np.complex128)
+    G = np.zeros((3, 3 + 4 * nsp), dtype=np.complex128)
+    n = _build(t0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    g0 = n - 4 * nsp
+    e = np.zeros(n)
+    for i in range(g0):
+        e[i] = 1.0
+    for j in range(nsp):
+        for c in range(1, 4):
+            e[g0 + 4 * j + c] = M[j]
+    for i in range(len(res)):
+        res[i] = math.nan
+    res[6] = 1.0
+    y = np.empty(n, dtype=np.complex128)
+    if not _initial_state(code, t0, n, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
+        return
+    E0 = _energy(y, e, n)
+    if not E0 > 0.0:
+        return
+    rho0 = abs(_dust_density(y, M, g0, nsp))
+    k1 = np.empty(n, dtype=np.complex128)
+    k2 = np.empty_like(k1)
+    k3 = np.empty_like(k1)
+    k4 = np.empty_like(k1)
+    k5 = np.empty_like(k1)
+    k6 = np.empty_like(k1)
+    k7 = np.empty_like(k1)
+    ys = np.empty_like(k1)
+    yn = np.empty_like(k1)
+    affine = math.isfinite(cs)  # the incompressible operator is not affine in t (rotating basis)
+    rows = np.zeros(n * n, dtype=np.int64)
+    cols = np.zeros(n * n, dtype=np.int64)
+    a = np.zeros(n * n, dtype=np.complex128)
+    b = np.zeros(n * n, dtype=np.complex128)
+    nnz = 0
+    if affine:
+        nnz = _affine_operator(kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, rows, cols, a, b)
+    args = (affine, nnz, rows, cols, a, b, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    _rhs(t0, y, n, *args, k1)
+    # initial step (Hairer, Norsett & Wanner 1993, II.4, simplified): 1 % of |y|/|f|
+    ynorm = 0.0
+    fnorm = 0.0
+    for i in range(n):
+        ynorm = max(ynorm, abs(y[i]))
+        fnorm = max(fnorm, abs(k1[i]))
+    h = 0.01 * ynorm / fnorm if fnorm > 0.0 else hmax
+    h = min(h, hmax, t1 - t0)
+    t = t0
+    Epeak = E0
+    tpeak = t0
+    Ea = E0 if ta <= t0 else math.nan
+    Eb = math.nan
+    facold = 1e-4
+    expo1 = 0.2 - 0.75 * 0.04
+    steps = 0
+    total = 0
+    while t < t1:
+        total += 1
+        if total > max_steps:
+            return
+        # land exactly on the window edges and the end
+        stop = t1
+        if ta > t and ta < stop:
+            stop = ta
+        if tb > t and tb < stop:
+            stop = tb
+        landing = False
+        if t + h >= stop - 1e-14 * max(1.0, abs(stop)):
+            h = stop - t
+            landing = True
+        for i in range(n):
+            ys[i] = y[i] + h * _A21 * k1[i]
+        _rhs(t + _C2 * h, ys, n, *args, k2)
+        for i in range(n):
+            ys[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
+        _rhs(t + _C3 * h, ys, n, *args, k3)
+        for i in range(n):
+            ys[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
+        _rhs(t + _C4 * h, ys, n, *args, k4)
+        for i in range(n):
+            ys[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
+        _rhs(t + _C5 * h, ys, n, *args, k5)
+        for i in range(n):
+            ys[i] = y[i] + h * (_A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i])
+        _rhs(t + h, ys, n, *args, k6)
+        for i in range(n):
+            yn[i] = y[i] + h * (_B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
+        _rhs(t + h, yn, n, *args, k7)
+        err = 0.0
+        for i in range(n):
+            d = h * (_E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i])
+            sc = atol + rtol * max(abs(y[i]), abs(yn[i]))
+            r = abs(d) / sc
+            if not math.isfinite(r):
+                return
+            if r > err:
+                err = r
+        fac11 = err ** expo1 if err > 0.0 else 0.0
+        if err <= 1.0:
+            # accepted: peak inside the step?
+            E1 = _energy(yn, e, n)
+            d0 = _denergy(y, k1, e, n)
+            d1 = _denergy(yn, k7, e, n)
+            if d0 > 0.0 and d1 < 0.0:
+                s, Em = _step_peak(h, y, k1, yn, k7, e, n)
+                if Em > Epeak:
+                    Epeak = Em
+                    tpeak = t + s * h
+            if E1 > Epeak:
+                Epeak = E1
+                tpeak = t + h
+            t = stop if landing else t + h
+            for i in range(n):
+                y[i] = yn[i]
+                k1[i] = k7[i]
+            steps += 1
+            if t == ta:
+                Ea = E1
+            if t == tb:
+                Eb = E1
+            facold = max(err, 1e-4)
+            fac = fac11 / facold ** 0.04
+            fac = max(0.1, min(5.0, fac / 0.9))
+            h = min(h / fac, hmax)
+        else:
+            h = h / min(5.0, fac11 / 0.9)
+    E1 = _energy(y, e, n)
+    res[0] = math.sqrt(Epeak / E0)
+    res[1] = tpeak
+    res[2] = math.sqrt(E1 / E0)
+    res[3] = abs(_dust_density(y, M, g0, nsp)) / rho0 if rho0 > 0.0 else math.nan
+    if tb > ta and Ea > 0.0 and Eb > 0.0:
+        res[4] = 0.5 * math.log(Eb / Ea) / (tb - ta)
+    res[5] = steps
+    res[6] = 0.0
+
+
+@numba.njit(cache=True)
+def integrate_chunk(code, T, M, Ux, Uy, Vx, Vy, Vz, kx0, ky, kz, cs, gamma, beta, t1, ta, tb, rtol, atol, hfrac,
+                    max_steps, out):
+    """Integrate waves ``p`` of a chunk (arrays over points; species along the last axis).
+
+    ``t1[p]`` is each wave's end time (NaN: skip the point), ``ta[p], tb[p]`` its averaging
+    window, ``hfrac`` the largest step as a fraction of t1. ``out`` has shape
+    (len(RESULT_FIELDS), npts).
+    """
+    npts = T.shape[0]
+    res = np.empty(out.shape[0])
+    for p in range(npts):
+        if not math.isfinite(t1[p]):
+            for i in range(out.shape[0]):
+                out[i, p] = math.nan
+            out[6, p] = 0.0
+            continue
+        _integrate(code, 0.0, t1[p], ta[p], tb[p], rtol, atol, hfrac * t1[p], max_steps, kx0[p], ky[p], kz, cs,
+                   Ux[p], Uy[p], T[p], M[p], Vx[p], Vy[p], Vz[p], gamma, beta, res)
+        for i in range(out.shape[0]):
+            out[i, p] = res[i]
