@@ -1,6 +1,5 @@
 """Long checks (``-m slow``): large LAPACK comparisons, full-scale maps."""
 
-
 import numpy as np
 import pytest
 
