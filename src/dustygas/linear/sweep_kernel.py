@@ -14,9 +14,10 @@ here the whole integration of a chunk of waves is one compiled loop:
   derivatives at both ends, error O(h⁴)) is maximised by golden-section search, so the peak
   amplification is not limited to the step grid;
 * the step lands exactly on the start and end of the averaging window;
+* with k_z = 0 (and no vertical drift) the vertical velocities decouple and the planar system of
+  thesis eq. 4.35 (3 + 3N unknowns) is integrated; its fastest eigenmode starts the wave;
 * the compressible operator is affine in t (every k_x-dependent entry is linear in k_x(t)), so
-  it is stored once per wave as sparse triplets L(t) = A + t B (≈ 40 non-zero entries of 64 for
-  one species) instead of being rebuilt at every stage.
+  it is stored once per wave as two sparse lists, L(t) y = A y + t (B y), instead of being rebuilt at every stage.
 
 The drag terms make the system stiff for τ_s ≪ 1 (rate 1/τ_s) and sound waves make it
 oscillatory (frequency c_s|k|): an explicit method needs h ≲ 3/max(c_s|k|, (1 + μ)/τ_s), which
@@ -59,49 +60,61 @@ _GOLDEN = 0.3819660112501051
 
 
 @numba.njit(cache=True)
-def _affine_operator(kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, rows, cols, a, b):
-    """L(t) = A + t B (exact for the compressible operator, affine in k_x(t)) as sparse triplets.
-
-    Returns the number of non-zero entries written to ``rows, cols, a, b``.
-    """
+def _affine_operator(keep, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, ia, ja, a, ib, jb, b):
+    """L(t) = A + t B on the components ``keep`` (exact for the compressible operator, which is
+    affine in k_x(t)) as two sparse lists; returns (nnz of A, nnz of B)."""
     n = _build(0.0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
     A = L[:n, :n].copy()
     _build(1.0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
-    nnz = 0
-    for i in range(n):
-        for j in range(n):
-            bij = L[i, j] - A[i, j]
-            if A[i, j] != 0.0 or bij != 0.0:
-                rows[nnz] = i
-                cols[nnz] = j
-                a[nnz] = A[i, j]
-                b[nnz] = bij
-                nnz += 1
-    return nnz
+    na = 0
+    nb = 0
+    for i in range(keep.shape[0]):
+        for j in range(keep.shape[0]):
+            aij = A[keep[i], keep[j]]
+            if aij != 0.0:
+                ia[na] = i
+                ja[na] = j
+                a[na] = aij
+                na += 1
+            bij = L[keep[i], keep[j]] - aij
+            if bij != 0.0:
+                ib[nb] = i
+                jb[nb] = j
+                b[nb] = bij
+                nb += 1
+    return na, nb
 
 
-@numba.njit(cache=True)
-def _rhs_affine(t, y, n, nnz, rows, cols, a, b, f):
+@numba.njit(cache=True, inline="always")
+def _rhs_affine(t, y, n, na, ia, ja, a, nb, ib, jb, b, f):
+    """f = A y + t (B y)."""
     for i in range(n):
         f[i] = 0.0
-    for q in range(nnz):
-        f[rows[q]] += (a[q] + t * b[q]) * y[cols[q]]
+    for q in range(nb):
+        f[ib[q]] += b[q] * y[jb[q]]
+    for i in range(n):
+        f[i] *= t
+    for q in range(na):
+        f[ia[q]] += a[q] * y[ja[q]]
 
 
-@numba.njit(cache=True)
-def _rhs(t, y, n, affine, nnz, rows, cols, a, b, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, f):
+@numba.njit(cache=True, inline="always")
+def _rhs(t, y, n, op, f):
+    """f = L(t) y on the kept components; ``op`` holds the affine lists or, for the incompressible
+    operator, what rebuilds L."""
+    affine, keep, na, ia, ja, a, nb, ib, jb, b, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G = op
     if affine:
-        _rhs_affine(t, y, n, nnz, rows, cols, a, b, f)
+        _rhs_affine(t, y, n, na, ia, ja, a, nb, ib, jb, b, f)
         return
     _build(t, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
     for i in range(n):
         acc = 0.0j
         for j in range(n):
-            acc += L[i, j] * y[j]
+            acc += L[keep[i], keep[j]] * y[j]
         f[i] = acc
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _energy(y, e, n):
     s = 0.0
     for i in range(n):
@@ -109,7 +122,7 @@ def _energy(y, e, n):
     return 0.5 * s
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _denergy(y, f, e, n):
     """dE/dt = Σ e_i Re(conj(y_i) f_i)."""
     s = 0.0
@@ -155,25 +168,26 @@ def _step_peak(h, y0, f0, y1, f1, e, n):
 
 
 @numba.njit(cache=True)
-def _initial_state(code, t0, n, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
-    """Initial state in the internal variables; returns False if it cannot be built."""
+def _initial_state(code, t0, n, keep, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
+    """Initial state on the components ``keep`` of the internal variables (False: none)."""
     nsp = T.shape[0]
     g0 = n - 4 * nsp
-    for i in range(n):
-        y[i] = 0.0
-    if code == 0:  # fastest eigenmode of L(k(t0))
+    m = keep.shape[0]
+    full = np.zeros(n, dtype=np.complex128)
+    if code == 0:  # fastest eigenmode of L(k(t0)) restricted to the kept components
         _build(t0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
-        A = np.ascontiguousarray(L[:n, :n])
-        for i in range(n):
-            for j in range(n):
+        A = np.empty((m, m), dtype=np.complex128)
+        for i in range(m):
+            for j in range(m):
+                A[i, j] = L[keep[i], keep[j]]
                 if not math.isfinite(A[i, j].real) or not math.isfinite(A[i, j].imag):
                     return False
         w, v = np.linalg.eig(A)
         best = 0
-        for i in range(1, n):
+        for i in range(1, m):
             if w[i].real > w[best].real:
                 best = i
-        for i in range(n):
+        for i in range(m):
             y[i] = v[i, best]
         return True
     if code == 1:  # vortical gas wave: u along z_hat x k_hat (in plane), no density, dust at rest
@@ -182,23 +196,25 @@ def _initial_state(code, t0, n, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma
         if kh == 0.0:
             return False
         if g0 == 2:  # incompressible: a_1 along e_1 = z_hat x k / |z_hat x k|
-            y[0] = 1.0
+            full[0] = 1.0
         else:
-            y[1] = -ky / kh
-            y[2] = kx / kh
-        return True
-    for j in range(nsp):  # code 2: dust density only
-        y[g0 + 4 * j] = 1.0
+            full[1] = -ky / kh
+            full[2] = kx / kh
+    else:
+        for j in range(nsp):  # code 2: dust density only
+            full[g0 + 4 * j] = 1.0
+    for i in range(m):
+        y[i] = full[keep[i]]
     return True
 
 
 @numba.njit(cache=True)
-def _dust_density(y, M, g0, nsp):
-    """Total dust-density perturbation Σ_j μ_j δρ_j / Σ_j μ_j (complex)."""
+def _dust_density(y, M, idx):
+    """Total dust-density perturbation Σ_j μ_j δρ_j / Σ_j μ_j (complex); ``idx[j]``: δρ_j in y."""
     num = 0.0j
     den = 0.0
-    for j in range(nsp):
-        num += M[j] * y[g0 + 4 * j]
+    for j in range(idx.shape[0]):
+        num += M[j] * y[idx[j]]
         den += M[j]
     return num / den if den > 0.0 else 0.0j
 
@@ -211,24 +227,41 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
     nmax = 4 + 4 * nsp
     L = np.zeros((nmax, nmax), dtype=np.complex128)
     G = np.zeros((3, 3 + 4 * nsp), dtype=np.complex128)
-    n = _build(t0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
-    g0 = n - 4 * nsp
-    e = np.zeros(n)
-    for i in range(g0):
-        e[i] = 1.0
+    nfull = _build(t0, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    g0 = nfull - 4 * nsp
+    # k_z = 0 without vertical drift: the vertical velocities decouple; integrate the planar
+    # system (thesis eq. 4.35) without u_z (a_2 = u_z in the incompressible limit) and w_z
+    planar = kz == 0.0
     for j in range(nsp):
-        for c in range(1, 4):
-            e[g0 + 4 * j + c] = M[j]
+        planar = planar and Vz[j] == 0.0
+    keep = np.empty(nfull, dtype=np.int64)
+    n = 0
+    for i in range(nfull):
+        vertical = i == g0 - 1 or (i >= g0 and (i - g0) % 4 == 3)
+        if not (planar and vertical):
+            keep[n] = i
+            n += 1
+    keep = keep[:n].copy()
+    e = np.zeros(n)
+    dens = np.empty(nsp, dtype=np.int64)
+    for q in range(n):
+        i = keep[q]
+        if i < g0:
+            e[q] = 1.0
+        elif (i - g0) % 4 == 0:
+            dens[(i - g0) // 4] = q
+        else:
+            e[q] = M[(i - g0) // 4]
     for i in range(len(res)):
         res[i] = math.nan
     res[6] = 1.0
     y = np.empty(n, dtype=np.complex128)
-    if not _initial_state(code, t0, n, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
+    if not _initial_state(code, t0, nfull, keep, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
         return
     E0 = _energy(y, e, n)
     if not E0 > 0.0:
         return
-    rho0 = abs(_dust_density(y, M, g0, nsp))
+    rho0 = abs(_dust_density(y, M, dens))
     k1 = np.empty(n, dtype=np.complex128)
     k2 = np.empty_like(k1)
     k3 = np.empty_like(k1)
@@ -239,15 +272,18 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
     ys = np.empty_like(k1)
     yn = np.empty_like(k1)
     affine = math.isfinite(cs)  # the incompressible operator is not affine in t (rotating basis)
-    rows = np.zeros(n * n, dtype=np.int64)
-    cols = np.zeros(n * n, dtype=np.int64)
+    ia = np.zeros(n * n, dtype=np.int64)
+    ja = np.zeros(n * n, dtype=np.int64)
     a = np.zeros(n * n, dtype=np.complex128)
+    ib = np.zeros(n * n, dtype=np.int64)
+    jb = np.zeros(n * n, dtype=np.int64)
     b = np.zeros(n * n, dtype=np.complex128)
-    nnz = 0
+    na = nb = 0
     if affine:
-        nnz = _affine_operator(kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, rows, cols, a, b)
-    args = (affine, nnz, rows, cols, a, b, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
-    _rhs(t0, y, n, *args, k1)
+        na, nb = _affine_operator(keep, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, ia, ja, a, ib, jb,
+                                  b)
+    op = (affine, keep, na, ia, ja, a, nb, ib, jb, b, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G)
+    _rhs(t0, y, n, op, k1)
     # initial step (Hairer, Norsett & Wanner 1993, II.4, simplified): 1 % of |y|/|f|
     ynorm = 0.0
     fnorm = 0.0
@@ -281,31 +317,33 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
             landing = True
         for i in range(n):
             ys[i] = y[i] + h * _A21 * k1[i]
-        _rhs(t + _C2 * h, ys, n, *args, k2)
+        _rhs(t + _C2 * h, ys, n, op, k2)
         for i in range(n):
             ys[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
-        _rhs(t + _C3 * h, ys, n, *args, k3)
+        _rhs(t + _C3 * h, ys, n, op, k3)
         for i in range(n):
             ys[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-        _rhs(t + _C4 * h, ys, n, *args, k4)
+        _rhs(t + _C4 * h, ys, n, op, k4)
         for i in range(n):
             ys[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-        _rhs(t + _C5 * h, ys, n, *args, k5)
+        _rhs(t + _C5 * h, ys, n, op, k5)
         for i in range(n):
             ys[i] = y[i] + h * (_A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i])
-        _rhs(t + h, ys, n, *args, k6)
+        _rhs(t + h, ys, n, op, k6)
         for i in range(n):
             yn[i] = y[i] + h * (_B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
-        _rhs(t + h, yn, n, *args, k7)
-        err = 0.0
+        _rhs(t + h, yn, n, op, k7)
+        err2 = 0.0
         for i in range(n):
             d = h * (_E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i])
-            sc = atol + rtol * max(abs(y[i]), abs(yn[i]))
-            r = abs(d) / sc
-            if not math.isfinite(r):
-                return
-            if r > err:
-                err = r
+            m2 = max(y[i].real * y[i].real + y[i].imag * y[i].imag, yn[i].real * yn[i].real + yn[i].imag * yn[i].imag)
+            sc = atol + rtol * math.sqrt(m2)
+            r2 = (d.real * d.real + d.imag * d.imag) / (sc * sc)
+            if r2 > err2:
+                err2 = r2
+        err = math.sqrt(err2)
+        if not math.isfinite(err):
+            return
         fac11 = err ** expo1 if err > 0.0 else 0.0
         if err <= 1.0:
             # accepted: peak inside the step?
@@ -339,7 +377,7 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
     res[0] = math.sqrt(Epeak / E0)
     res[1] = tpeak
     res[2] = math.sqrt(E1 / E0)
-    res[3] = abs(_dust_density(y, M, g0, nsp)) / rho0 if rho0 > 0.0 else math.nan
+    res[3] = abs(_dust_density(y, M, dens)) / rho0 if rho0 > 0.0 else math.nan
     if tb > ta and Ea > 0.0 and Eb > 0.0:
         res[4] = 0.5 * math.log(Eb / Ea) / (tb - ta)
     res[5] = steps
