@@ -25,7 +25,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "src"))
 
-from dustygas.linear.sweep import SweepSpec, open_executor, run_sweep  # noqa: E402
+from dustygas.linear.sweep import SweepSpec  # noqa: E402
+from dustygas.linear.sweep_run import open_executor, run_sweep  # noqa: E402
 
 TARGET_S = 60.0
 

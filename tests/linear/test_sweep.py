@@ -31,7 +31,8 @@ from dustygas.cli._linear_sweep import build_spec
 from dustygas.errors import UserError
 from dustygas.linear import StreamingParams, growth_rate
 from dustygas.linear.shearing_wave import shearing_wave
-from dustygas.linear.sweep import SweepResult, SweepSpec, run_sweep, sweep
+from dustygas.linear.sweep import SweepResult, SweepSpec
+from dustygas.linear.sweep_run import run_sweep, sweep
 
 TESTS = Path(__file__).resolve().parents[1]
 SRC = TESTS.parent / "src"
@@ -171,6 +172,24 @@ def test_file_has_labelled_dimensions_parameters_and_the_preferred_angle(tmp_pat
             a, b = np.unravel_index(np.argmax(r["dust_final"][i, j]), (3, 3))
             kx_end = GRID["kx"][a] + 1.5 * GRID["ky"][b] * 3.0
             assert angle[i, j] == pytest.approx(math.degrees(math.atan(GRID["ky"][b] / kx_end)), abs=1e-12)
+
+
+def test_sampled_times_are_the_amplification_up_to_each_time(tmp_path):
+    """``times = 4``: dust_t at t_end/2 equals a sweep integrated to t_end/2 (to 1e-6), the last
+    sample is dust_final itself, and the predicted angle at t_end is that of :meth:`preferred`."""
+    grid = dict(mu=[0.5], taus=[0.3], kx=[-30.0, -10.0], ky=[2.0, 6.0])
+    r = run_sweep(SweepSpec(**grid, t_end=4.0, times=4), tmp_path / "t.h5")
+    half = sweep(**grid, t_end=2.0)
+    assert np.max(np.abs(r["dust_t"][..., 1] / half["dust_final"] - 1)) <= 1e-6
+    assert np.array_equal(r["dust_t"][..., -1], r["dust_final"])
+    series, final = r.preferred_series(), r.preferred()
+    assert series["angle_deg"][..., -1] == pytest.approx(final["angle_deg"], abs=1e-12)
+    assert list(series["time"]) == [1.0, 2.0, 3.0, 4.0]
+    with h5py.File(tmp_path / "t.h5") as f:
+        assert [d.label for d in f["dust_t"].dims] == ["mu", "taus", "kx0", "ky", "time"]
+        assert f["preferred_t/angle_deg"].shape == (1, 1, 4)
+    back = SweepResult.load(tmp_path / "t.h5")
+    assert np.array_equal(back["dust_t"], r["dust_t"])
 
 
 def test_killed_sweep_resumes_and_writes_the_same_file(tmp_path):

@@ -15,8 +15,8 @@ attributes) and the figures DIR/sweep_amplification.png and DIR/sweep_angle.png 
 
 Grids: --mu 0.1 1 3 (a list) or --mu-range MIN MAX N (log-spaced; also --taus-range); --kx-range and
 --ky-range are evenly spaced. A TOML file (-c) holds the same keys in a [sweep] table (mu = [..] or
-mu_range = [min, max, n], kz, Pi, drag, t_end, window, initial, metric, rtol, atol, chunk); the
-command line overrides it.
+mu_range = [min, max, n], kz, Pi, drag, t_end, window, initial, metric, rtol, atol, chunk, times);
+the command line overrides it.
 
 Quantities per point: energy_peak (max_t sqrt(E(t)/E(0)), the swing amplification), energy_final
 (sqrt(E(t_end)/E(0))), dust_final (|Sigma_d(t_end)/Sigma_d(0)|), mean_growth (ln(E(t_b)/E(t_a))/(2 (t_b-t_a))
@@ -51,6 +51,8 @@ def add_sweep_arguments(s: argparse.ArgumentParser) -> None:
     s.add_argument("--rtol", type=float, help="relative tolerance of the integrator (default 1e-6)")
     s.add_argument("--atol", type=float, help="absolute tolerance (default 1e-12)")
     s.add_argument("--chunk", type=int, help="points per task (default 64)")
+    s.add_argument("--times", type=int, metavar="N", help="also sample the amplifications at N times t_end*i/N "
+                   "(the predicted preferred angle versus time; default 0)")
     s.add_argument("-c", "--config", metavar="FILE.toml", help="TOML file with a [sweep] table")
     s.add_argument("--executor", default="process", help="process (default), serial, mpi, dask")
     s.add_argument("--workers", type=int, help="worker processes of --executor process (default: CPU count)")
@@ -92,7 +94,7 @@ def _t_end(text):
 
 
 def build_spec(args):
-    from ..linear.sweep import spec_from_mapping
+    from ..linear.sweep_run import spec_from_mapping
 
     values = _toml(args.config) if args.config else {}
     for grid in ("mu", "taus", "kx", "ky"):
@@ -106,7 +108,7 @@ def build_spec(args):
             values[grid] = given
         if rng is not None:
             values[f"{grid}_range"] = [rng[0], rng[1], int(rng[2]) if float(rng[2]).is_integer() else rng[2]]
-    for key in ("kz", "Pi", "drag", "window", "initial", "metric", "rtol", "atol", "chunk"):
+    for key in ("kz", "Pi", "drag", "window", "initial", "metric", "rtol", "atol", "chunk", "times"):
         v = getattr(args, key)
         if v is not None:
             values[key] = tuple(v) if key == "window" else v
@@ -116,7 +118,7 @@ def build_spec(args):
 
 
 def main(args) -> int:
-    from ..linear.sweep import open_executor, run_sweep
+    from ..linear.sweep_run import open_executor, run_sweep
 
     spec = build_spec(args)  # every input checked before anything is written
     out = Path(args.output)

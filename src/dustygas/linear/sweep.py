@@ -22,7 +22,9 @@ Quantities (arrays of shape (n_mu, n_taus, n_kx, n_ky); E is the wave energy of
     (t_a, t_b) = (w_0, w_1) t_end (default the whole integration); for k_y = 0 it is the
     axisymmetric growth rate of the starting eigenmode;
 ``steps``, ``failed``
-    accepted steps of each integration, and the points where it failed (their values NaN).
+    accepted steps of each integration, and the points where it failed (their values NaN);
+``dust_t``, ``energy_t`` (with ``times = n``)
+    G_Σ and G_E at the n times t_end·i/n, i = 1 … n (an extra trailing dimension ``time``).
 
 ``t_end = "swing"`` integrates each *leading* wave (k_x0 k_y < 0) over its symmetric swing
 (0, 2 t_swing), from k_x0 to −k_x0; other points are NaN (not failures).
@@ -30,32 +32,25 @@ Quantities (arrays of shape (n_mu, n_taus, n_kx, n_ky); E is the wave energy of
 The **preferred wavevector** of each (μ, τ_s) is the (k_x0, k_y) that maximises ``metric``
 (default ``dust_final``); it is reported with the angle θ = arctan(k_y/k_x) ∈ (−90°, 90°] of the
 wavevector it has at t_end, k_x(t_end) = k_x0 + (3/2) k_y t_end -- the wave a Fourier transform
-of Σ_d(x, y) taken at t_end shows when every wave started with the same amplitude.
+of Σ_d(x, y) taken at t_end shows when every wave started with the same amplitude. With
+``times``, :meth:`SweepResult.preferred_series` gives the same at every sample time: the
+predicted angle θ(t) of a run whose waves all started at t = 0.
 
-Execution: the grid is cut into chunks of consecutive points (k_y fastest); each chunk is a
-task of a :class:`concurrent.futures.Executor` (a process pool, ``mpi4py.futures``, a Dask
-cluster's executor; :func:`open_executor`) or runs in this process. A chunk's result does not
-depend on where it runs (the same compiled code on the same inputs), so every executor writes
-the same file. With an output path, each finished chunk is written atomically into a work
-directory next to it, and a re-run with the same parameters computes only the missing chunks.
+The grid is cut into chunks of consecutive points (k_y fastest), each computed by
+:func:`compute_chunk`; :mod:`dustygas.linear.sweep_run` runs them through any executor and
+resumably (:func:`~dustygas.linear.sweep_run.sweep`, :func:`~dustygas.linear.sweep_run.run_sweep`).
 """
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import json
 import math
-import os
-import shutil
-import sys
-from concurrent.futures import Executor, as_completed
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Iterator, Sequence
+from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from .._version import __version__
 from ..errors import UserError
@@ -65,12 +60,10 @@ from .operator import DRAG_MODELS, drag_code
 from .shearing_wave import SHEAR_RATE
 from .sweep_kernel import INITIAL_STATES, RESULT_FIELDS, integrate_chunk
 
-__all__ = ["SweepSpec", "SweepResult", "sweep", "run_sweep", "open_executor", "METRICS", "EXECUTORS"]
+__all__ = ["SweepSpec", "SweepResult", "compute_chunk", "METRICS", "DIMENSIONS"]
 
 #: quantities a preferred wavevector can maximise
 METRICS = ("dust_final", "energy_final", "energy_peak", "mean_growth")
-#: executor names of :func:`open_executor`
-EXECUTORS = ("process", "serial", "mpi", "dask")
 DIMENSIONS = ("mu", "taus", "kx0", "ky")
 
 DESCRIPTIONS = {
@@ -81,6 +74,8 @@ DESCRIPTIONS = {
     "mean_growth": "ln(E(t_b)/E(t_a)) / (2 (t_b - t_a)), (t_a, t_b) = window * t_end [Omega]",
     "steps": "accepted Dormand-Prince steps",
     "failed": "1 where the integration failed (values NaN)",
+    "dust_t": "|Sigma_d(t)|/|Sigma_d(0)| at the sample times",
+    "energy_t": "sqrt(E(t)/E(0)) at the sample times",
 }
 
 
@@ -109,7 +104,9 @@ class SweepSpec:
     ``initial``: ``"fastest"`` (eigenmode of L(k(0)) with the largest growth rate),
     ``"vortical"`` (gas velocity along ẑ × k̂, nothing else: the Kelvin wave) or ``"dust"``
     (δρ_p/ρ_p0 = 1 only). ``rtol``, ``atol``, ``max_step`` (fraction of t_end) and
-    ``max_steps`` control the integrator; ``chunk`` is the number of points per task.
+    ``max_steps`` control the integrator; ``chunk`` is the number of points per task;
+    ``times`` > 0 also samples the dust and energy amplifications at ``times`` equally spaced
+    times (needs a numeric ``t_end``).
     """
 
     mu: tuple[float, ...]
@@ -128,6 +125,7 @@ class SweepSpec:
     max_step: float = 0.05
     max_steps: int = 10_000_000
     chunk: int = 64
+    times: int = 0
 
     def __post_init__(self) -> None:
         for name in ("mu", "taus", "kx", "ky"):
@@ -174,11 +172,13 @@ class SweepSpec:
             raise UserError("k = 0 at kx = ky = 0 with kz = 0: remove 0 from kx or ky, or give kz != 0")
         if not (0 < self.rtol < 1 and self.atol > 0 and 0 < self.max_step <= 1):
             raise UserError("rtol must be in (0, 1), atol > 0 and max_step in (0, 1]")
-        for name in ("max_steps", "chunk"):
+        for name, least in (("max_steps", 1), ("chunk", 1), ("times", 0)):
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
-                raise UserError(f"{name} = {v!r}: expected a positive integer")
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < least:
+                raise UserError(f"{name} = {v!r}: expected an integer >= {least}")
             object.__setattr__(self, name, int(v))
+        if self.times and self.t_end == "swing":
+            raise UserError("times needs a fixed t_end (every swing has its own length)")
 
     # ------------------------------------------------------------------ derived
     @property
@@ -214,6 +214,13 @@ class SweepSpec:
         """Hash of everything that changes the results (chunk size included: it defines the work files)."""
         return hashlib.sha256((self.to_json() + __version__).encode()).hexdigest()[:16]
 
+    @property
+    def sample_times(self) -> np.ndarray:
+        """The ``times`` sample times t_end·i/n (empty without ``times``)."""
+        if not self.times:
+            return np.zeros(0)
+        return float(self.t_end) * np.arange(1, self.times + 1) / self.times
+
     def end_times(self, kx0: np.ndarray, ky: np.ndarray) -> np.ndarray:
         if self.t_end == "swing":
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -226,7 +233,8 @@ class SweepSpec:
 
 
 def compute_chunk(spec_json: str, start: int, stop: int) -> np.ndarray:
-    """Results of points ``start .. stop-1`` (flat C order of the grid), shape (7, stop - start).
+    """Results of points ``start .. stop-1`` (flat C order of the grid), shape (7 + 2 times, stop - start):
+    the :data:`RESULT_FIELDS`, then ``dust_t`` and ``energy_t`` at each sample time.
 
     A module-level function of plain arguments, so that every executor can ship it.
     """
@@ -243,13 +251,15 @@ def compute_chunk(spec_json: str, start: int, stop: int) -> np.ndarray:
     t1 = spec.end_times(kx0, ky)
     w0, w1 = spec.window
     out = np.empty((len(RESULT_FIELDS), stop - start))
+    series = np.empty((2, stop - start, spec.times))
+    tfrac = np.arange(1, spec.times + 1) / spec.times if spec.times else np.zeros(0)
     cs = math.inf if spec.Pi == 0 else 1.0 / spec.Pi
     integrate_chunk(INITIAL_STATES[spec.initial], T, M, np.ascontiguousarray(eq.gas_vx, dtype=np.float64).reshape(-1),
                     np.ascontiguousarray(eq.gas_vy, dtype=np.float64).reshape(-1),
                     np.ascontiguousarray(eq.dust_vx, dtype=np.float64), np.ascontiguousarray(eq.dust_vy, dtype=np.float64),
-                    np.zeros_like(T), kx0, ky, spec.kz, cs, gamma, beta, t1, w0 * t1, w1 * t1, spec.rtol, spec.atol,
-                    spec.max_step, spec.max_steps, out)
-    return out
+                    np.zeros_like(T), kx0, ky, spec.kz, cs, gamma, beta, t1, w0 * t1, w1 * t1, tfrac, spec.rtol,
+                    spec.atol, spec.max_step, spec.max_steps, out, series)
+    return np.concatenate([out, series[0].T, series[1].T], axis=0)
 
 
 # ---------------------------------------------------------------------------- results
@@ -290,6 +300,30 @@ class SweepResult:
                "kx_end": kx_end, "value": np.take_along_axis(flat, idx[..., None], -1)[..., 0]}
         return {k: np.where(ok, v, np.nan) for k, v in out.items()}
 
+    def preferred_series(self) -> dict[str, np.ndarray]:
+        """The preferred wave at every sample time (needs ``times``): arrays (n_mu, n_taus, n_times).
+
+        Keys as :meth:`preferred` for the metric ``dust_t`` (the dust amplification since t = 0);
+        ``angle_deg`` = arctan(k_y/k_x(t)) of the most amplified wave at each time t, plus ``time``.
+        """
+        if "dust_t" not in self.data:
+            raise UserError("this sweep has no sampled times (run it with times > 0)")
+        a = self.data["dust_t"]
+        nm, nt, nx, ny, ns = a.shape
+        flat = np.moveaxis(a, -1, 2).reshape(nm, nt, ns, nx * ny)
+        ok = np.isfinite(flat).any(axis=-1)
+        idx = np.argmax(np.where(np.isfinite(flat), flat, -np.inf), axis=-1)
+        i, j = np.unravel_index(idx, (nx, ny))
+        kx0 = np.asarray(self.spec.kx)[i]
+        ky = np.asarray(self.spec.ky)[j]
+        t = self.spec.sample_times
+        kx_t = kx0 + SHEAR_RATE * ky * t
+        out = {"angle_deg": _angle(kx_t, ky), "kx0": kx0, "ky": ky, "kx_t": kx_t,
+               "value": np.take_along_axis(flat, idx[..., None], -1)[..., 0]}
+        out = {k: np.where(ok, v, np.nan) for k, v in out.items()}
+        out["time"] = t
+        return out
+
     # ------------------------------------------------------------------ files
     def save(self, path: str | Path) -> Path:
         """One HDF5 file: labelled dimensions (dimension scales), every parameter as attributes."""
@@ -310,10 +344,16 @@ class SweepResult:
                     d.attrs["description"] = desc
                     d.make_scale(name)
                     scales[name] = d
-                for name in RESULT_FIELDS:
+                if self.spec.times:
+                    d = f.create_dataset("time", data=self.spec.sample_times, track_times=False)
+                    d.attrs["unit"] = "1/Omega"
+                    d.attrs["description"] = "sample times t_end * i / times"
+                    d.make_scale("time")
+                    scales["time"] = d
+                for name in [*RESULT_FIELDS, *(("dust_t", "energy_t") if self.spec.times else ())]:
                     d = f.create_dataset(name, data=self.data[name], track_times=False)
                     d.attrs["description"] = DESCRIPTIONS[name]
-                    for axis, dim in enumerate(DIMENSIONS):
+                    for axis, dim in enumerate(DIMENSIONS + (("time",) if name.endswith("_t") else ())):
                         d.dims[axis].label = dim
                         d.dims[axis].attach_scale(scales[dim])
                 g = f.create_group("preferred", track_order=True)
@@ -325,6 +365,17 @@ class SweepResult:
                     for axis, dim in enumerate(DIMENSIONS[:2]):
                         d.dims[axis].label = dim
                         d.dims[axis].attach_scale(scales[dim])
+                if self.spec.times:
+                    g = f.create_group("preferred_t", track_order=True)
+                    g.attrs["description"] = ("per (mu, taus, time): the (kx0, ky) of the largest dust amplification "
+                                              "dust_t; angle_deg = arctan(ky / kx(t)), kx(t) = kx0 + 1.5 ky t")
+                    for name, arr in self.preferred_series().items():
+                        if name == "time":
+                            continue
+                        d = g.create_dataset(name, data=arr, track_times=False)
+                        for axis, dim in enumerate(("mu", "taus", "time")):
+                            d.dims[axis].label = dim
+                            d.dims[axis].attach_scale(scales[dim])
                 f.attrs["dustygas_version"] = __version__
                 f.attrs["parameters"] = self.spec.to_json()
                 for key, value in self.spec.to_dict().items():
@@ -342,7 +393,7 @@ class SweepResult:
 
         with h5py.File(path, "r") as f:
             spec = SweepSpec.from_json(f.attrs["parameters"])
-            data = {name: f[name][()] for name in RESULT_FIELDS}
+            data = {name: f[name][()] for name in (*RESULT_FIELDS, "dust_t", "energy_t") if name in f}
             attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
         return cls(spec, data, attrs)
 
@@ -353,232 +404,3 @@ def _angle(kx: np.ndarray, ky: np.ndarray) -> np.ndarray:
         a = np.degrees(np.arctan2(ky, kx))
     a = np.where(a > 90.0, a - 180.0, a)
     return np.where(a <= -90.0, a + 180.0, a)
-
-
-# ---------------------------------------------------------------------------- executors
-
-
-@contextlib.contextmanager
-def open_executor(kind: str = "process", *, workers: int | None = None, scheduler: str | None = None,
-                  timeout: float = 10.0) -> Iterator[Executor | None]:
-    """A :class:`concurrent.futures.Executor` for :func:`run_sweep` (None: this process).
-
-    ``"process"``: a :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` processes
-    (default: the CPU count), started with ``spawn``; ``"serial"``: none; ``"mpi"``:
-    :class:`mpi4py.futures.MPIPoolExecutor` (run under ``mpiexec -n N python -m mpi4py.futures``);
-    ``"dask"``: the executor of a :class:`distributed.Client` connected to ``scheduler``
-    (one-line error if nothing answers within ``timeout`` seconds).
-    """
-    if kind not in EXECUTORS:
-        raise UserError(f"executor {kind!r}: choose one of {', '.join(EXECUTORS)}")
-    if workers is not None and (isinstance(workers, bool) or int(workers) < 1):
-        raise UserError(f"workers = {workers!r}: expected a positive integer")
-    if scheduler is not None and kind != "dask":
-        raise UserError("--scheduler is only used with --executor dask")
-    if kind == "serial":
-        yield None
-    elif kind == "process":
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
-        with ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1,
-                                 mp_context=multiprocessing.get_context("spawn")) as ex:
-            yield ex
-    elif kind == "mpi":
-        try:
-            from mpi4py.futures import MPIPoolExecutor
-        except ImportError:
-            raise UserError("executor 'mpi' needs mpi4py (pip install 'dustygas[mpi]')") from None
-        with MPIPoolExecutor(max_workers=workers) as ex:
-            yield ex
-    else:
-        if not scheduler:
-            raise UserError("executor 'dask' needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
-        try:
-            from distributed import Client
-        except ImportError:
-            raise UserError("executor 'dask' needs Dask distributed (pip install 'dustygas[sweep]')") from None
-        try:
-            client = Client(scheduler, timeout=timeout, set_as_default=False)
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise UserError(f"--scheduler {scheduler}: no Dask scheduler answered within {timeout:g} s "
-                            f"({type(exc).__name__})") from None
-        try:
-            yield client.get_executor(pure=False)
-        finally:
-            client.close()
-
-
-# ---------------------------------------------------------------------------- running
-
-
-class _WorkDir:
-    """Finished chunks of one sweep, each an atomically written ``.npy`` file, plus its spec."""
-
-    def __init__(self, output: Path, spec: SweepSpec, overwrite: bool):
-        self.path = output.with_name(output.name + ".parts")
-        self.spec = spec
-        spec_file = self.path / "spec.json"
-        if self.path.exists():
-            old = spec_file.read_text() if spec_file.exists() else ""
-            if old != spec.to_json() + "\n" + spec.digest():
-                if not overwrite:
-                    raise UserError(f"{self.path} holds an unfinished sweep with other parameters: remove it, "
-                                    "or pass --overwrite to start again")
-                shutil.rmtree(self.path)
-        self.path.mkdir(parents=True, exist_ok=True)
-        if not spec_file.exists():
-            with atomic_path(spec_file) as tmp:
-                tmp.write_text(spec.to_json() + "\n" + spec.digest())
-
-    def file(self, i: int) -> Path:
-        return self.path / f"chunk_{i:06d}.npy"
-
-    def done(self) -> set[int]:
-        out = set()
-        for i in range(self.spec.nchunks):
-            if self.file(i).exists():
-                out.add(i)
-        return out
-
-    def write(self, i: int, values: np.ndarray) -> None:
-        with atomic_path(self.file(i)) as tmp:
-            with open(tmp, "wb") as fh:
-                np.save(fh, np.ascontiguousarray(values, dtype=np.float64), allow_pickle=False)
-
-    def read(self, i: int) -> np.ndarray:
-        return np.load(self.file(i), allow_pickle=False)
-
-    def remove(self) -> None:
-        shutil.rmtree(self.path, ignore_errors=True)
-
-
-def run_sweep(spec: SweepSpec, output: str | Path | None = None, *, executor: Executor | None = None,
-              progress: bool = False, overwrite: bool = False, log=None) -> SweepResult:
-    """Compute ``spec`` (through ``executor`` if given) and, with ``output``, write it resumably.
-
-    With ``output`` (an ``.h5`` path) finished chunks go to ``OUTPUT.parts/``; a run killed at any
-    moment and started again with the same spec computes only the chunks that are missing, and
-    the final file is written atomically (and the work directory removed) at the end. An existing
-    ``output`` is an error unless ``overwrite``.
-    """
-    from tqdm import tqdm
-
-    work = None
-    if output is not None:
-        output = Path(output)
-        if output.exists() and not overwrite:
-            raise UserError(f"{output} exists: choose another output or pass --overwrite")
-        if output.parent and not output.parent.exists():
-            raise UserError(f"output directory {output.parent} does not exist")
-        work = _WorkDir(output, spec, overwrite)
-    spec_json = spec.to_json()
-    results: dict[int, np.ndarray] = {}
-    done = work.done() if work else set()
-    for i in done:
-        results[i] = work.read(i)
-    todo = [i for i in range(spec.nchunks) if i not in done]
-    if log is not None and done:
-        log(f"resuming {output}: {len(done)} of {spec.nchunks} chunks already done")
-    initial = sum(spec.chunk_range(i)[1] - spec.chunk_range(i)[0] for i in done)
-    bar = tqdm(total=spec.size, initial=initial, unit="wave",
-               disable=not progress, file=sys.stderr, desc="sweep", dynamic_ncols=True)
-    try:
-        def finish(i: int, values: np.ndarray) -> None:
-            results[i] = values
-            if work:
-                work.write(i, values)
-            bar.update(values.shape[1])
-
-        if executor is None:
-            for i in todo:
-                finish(i, compute_chunk(spec_json, *spec.chunk_range(i)))
-        else:
-            futures = {executor.submit(compute_chunk, spec_json, *spec.chunk_range(i)): i for i in todo}
-            for fut in as_completed(futures):
-                finish(futures[fut], fut.result())
-    finally:
-        bar.close()
-    flat = np.concatenate([results[i] for i in range(spec.nchunks)], axis=1)
-    data = {name: flat[k].reshape(spec.shape) for k, name in enumerate(RESULT_FIELDS)}
-    data["steps"] = data["steps"].astype(np.int64)
-    data["failed"] = data["failed"].astype(np.int8)
-    result = SweepResult(spec, data, {"dustygas_version": __version__})
-    if output is not None:
-        result.save(output)  # atomic: an old file is replaced only by the complete new one
-        work.remove()
-    return result
-
-
-def sweep(
-    *,
-    mu: ArrayLike,
-    taus: ArrayLike,
-    kx: ArrayLike,
-    ky: ArrayLike,
-    executor: Executor | None = None,
-    output: str | Path | None = None,
-    progress: bool = False,
-    **options: Any,
-) -> SweepResult:
-    """Shearing-wave amplification over the grid (μ, τ_s, k_x0, k_y) (module docstring).
-
-    Grids are keyword-only (two array-like physical parameters must not be swappable);
-    ``options`` are the other fields of :class:`SweepSpec`. ``executor`` is any
-    :class:`concurrent.futures.Executor` (None: this process); ``output`` an HDF5 path
-    (resumable, see :func:`run_sweep`).
-
-    Examples
-    --------
-    k_y = 0: the linA eigenmode's time-averaged growth is its growth rate (consistent drag):
-
-    >>> r = sweep(mu=[3.0], taus=[0.1], kx=[30.0], ky=[0.0], kz=30.0, t_end=2.0)
-    >>> round(float(r["mean_growth"][0, 0, 0, 0]), 6)
-    0.419009
-    """
-    names = {f.name for f in fields(SweepSpec)}
-    unknown = sorted(set(options) - names)
-    if unknown:
-        raise UserError(f"sweep: unknown option {unknown[0]!r} (allowed: {', '.join(sorted(names - set(DIMENSIONS)))})")
-    spec = SweepSpec(mu=mu, taus=taus, kx=kx, ky=ky, **options)
-    return run_sweep(spec, output, executor=executor, progress=progress)
-
-
-def spec_from_mapping(values: dict[str, Any], source: str = "sweep") -> SweepSpec:
-    """A :class:`SweepSpec` from a TOML-like mapping (``mu = [...]`` or ``mu_range = [min, max, n]``)."""
-    allowed = {f.name for f in fields(SweepSpec)} | {f"{g}_range" for g in ("mu", "taus", "kx", "ky")}
-    kw: dict[str, Any] = {}
-    for key, value in values.items():
-        if key not in allowed:
-            raise UserError(f"{source}.{key}: unknown key (allowed: {', '.join(sorted(allowed))})")
-        if key.endswith("_range"):
-            grid = key[:-6]
-            kw[grid] = grid_from_range(value, f"{source}.{key}", log=grid in ("mu", "taus"))
-        else:
-            kw[key] = tuple(value) if key == "window" and isinstance(value, list) else value
-    missing = [g for g in ("mu", "taus", "kx", "ky") if g not in kw]
-    if missing:
-        raise UserError(f"{source}: no grid for {missing[0]} (give {missing[0]} = [...] or {missing[0]}_range = "
-                        "[min, max, n])")
-    return SweepSpec(**kw)
-
-
-def grid_from_range(value: Sequence, name: str, log: bool) -> np.ndarray:
-    """``[min, max, n]`` -> n points, log-spaced (μ, τ_s; min > 0) or evenly spaced (k)."""
-    try:
-        lo, hi, n = value
-        lo, hi = float(lo), float(hi)
-        if isinstance(n, bool) or int(n) != n:
-            raise ValueError
-        n = int(n)
-    except (TypeError, ValueError):
-        raise UserError(f"{name} = {value!r}: expected [min, max, n]") from None
-    if n < 1:
-        raise UserError(f"{name} = {value!r}: n must be >= 1 (an empty grid has nothing to sweep)")
-    if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi) or (n > 1 and lo == hi):
-        raise UserError(f"{name} = {value!r}: expected min < max (or n = 1)")
-    if log:
-        if lo <= 0:
-            raise UserError(f"{name} = {value!r}: a log-spaced grid needs min > 0")
-        return np.logspace(math.log10(lo), math.log10(hi), n)
-    return np.linspace(lo, hi, n)

@@ -220,9 +220,11 @@ def _dust_density(y, M, idx):
 
 
 @numba.njit(cache=True)
-def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz,
-               gamma, beta, res):
-    """One wave from t0 to t1; fills ``res`` in the order of :data:`RESULT_FIELDS`."""
+def _integrate(code, t0, t1, ta, tb, tout, rtol, atol, hmax, max_steps, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy,
+               Vz, gamma, beta, res, series):
+    """One wave from t0 to t1; fills ``res`` in the order of :data:`RESULT_FIELDS` and
+    ``series[0, i], series[1, i]`` with the dust and energy amplifications at the sorted times
+    ``tout[i]`` (t0 < tout <= t1)."""
     nsp = T.shape[0]
     nmax = 4 + 4 * nsp
     L = np.zeros((nmax, nmax), dtype=np.complex128)
@@ -255,6 +257,9 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
     for i in range(len(res)):
         res[i] = math.nan
     res[6] = 1.0
+    for i in range(series.shape[1]):
+        series[0, i] = math.nan
+        series[1, i] = math.nan
     y = np.empty(n, dtype=np.complex128)
     if not _initial_state(code, t0, nfull, keep, kx0, ky, kz, cs, Ux, Uy, T, M, Vx, Vy, Vz, gamma, beta, L, G, y):
         return
@@ -301,6 +306,8 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
     expo1 = 0.2 - 0.75 * 0.04
     steps = 0
     total = 0
+    nout = tout.shape[0]
+    iout = 0
     while t < t1:
         total += 1
         if total > max_steps:
@@ -311,6 +318,8 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
             stop = ta
         if tb > t and tb < stop:
             stop = tb
+        if iout < nout and tout[iout] < stop:
+            stop = tout[iout]
         landing = False
         if t + h >= stop - 1e-14 * max(1.0, abs(stop)):
             h = stop - t
@@ -367,6 +376,10 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
                 Ea = E1
             if t == tb:
                 Eb = E1
+            while iout < nout and t == tout[iout]:
+                series[0, iout] = abs(_dust_density(y, M, dens)) / rho0 if rho0 > 0.0 else math.nan
+                series[1, iout] = math.sqrt(E1 / E0)
+                iout += 1
             facold = max(err, 1e-4)
             fac = fac11 / facold ** 0.04
             fac = max(0.1, min(5.0, fac / 0.9))
@@ -385,23 +398,30 @@ def _integrate(code, t0, t1, ta, tb, rtol, atol, hmax, max_steps, kx0, ky, kz, c
 
 
 @numba.njit(cache=True)
-def integrate_chunk(code, T, M, Ux, Uy, Vx, Vy, Vz, kx0, ky, kz, cs, gamma, beta, t1, ta, tb, rtol, atol, hfrac,
-                    max_steps, out):
+def integrate_chunk(code, T, M, Ux, Uy, Vx, Vy, Vz, kx0, ky, kz, cs, gamma, beta, t1, ta, tb, tfrac, rtol, atol,
+                    hfrac, max_steps, out, series):
     """Integrate waves ``p`` of a chunk (arrays over points; species along the last axis).
 
     ``t1[p]`` is each wave's end time (NaN: skip the point), ``ta[p], tb[p]`` its averaging
-    window, ``hfrac`` the largest step as a fraction of t1. ``out`` has shape
-    (len(RESULT_FIELDS), npts).
+    window, ``tfrac`` the sorted sample times as fractions of t1 (0 < tfrac <= 1), ``hfrac`` the
+    largest step as a fraction of t1. ``out`` has shape (len(RESULT_FIELDS), npts), ``series``
+    (2, npts, len(tfrac)): dust and energy amplification at the sample times.
     """
     npts = T.shape[0]
     res = np.empty(out.shape[0])
+    ser = np.empty((2, tfrac.shape[0]))
+    tout = np.empty(tfrac.shape[0])
     for p in range(npts):
         if not math.isfinite(t1[p]):
             for i in range(out.shape[0]):
                 out[i, p] = math.nan
             out[6, p] = 0.0
+            series[:, p, :] = math.nan
             continue
-        _integrate(code, 0.0, t1[p], ta[p], tb[p], rtol, atol, hfrac * t1[p], max_steps, kx0[p], ky[p], kz, cs,
-                   Ux[p], Uy[p], T[p], M[p], Vx[p], Vy[p], Vz[p], gamma, beta, res)
+        for i in range(tfrac.shape[0]):
+            tout[i] = t1[p] if tfrac[i] == 1.0 else tfrac[i] * t1[p]
+        _integrate(code, 0.0, t1[p], ta[p], tb[p], tout, rtol, atol, hfrac * t1[p], max_steps, kx0[p], ky[p], kz, cs,
+                   Ux[p], Uy[p], T[p], M[p], Vx[p], Vy[p], Vz[p], gamma, beta, res, ser)
         for i in range(out.shape[0]):
             out[i, p] = res[i]
+        series[:, p, :] = ser
