@@ -18,6 +18,7 @@ DESCRIPTION = """Linear theory of the streaming instability (thesis §4.1, §4.6
   dustygas linear map -o out --n 60                                        YG05-style map
   dustygas linear shear --taus 0.1 --mu 3 --kx -30 --ky 1 --kz 30 -o out   one swing
   dustygas linear sweep --mu 0.1 1 --taus 0.1 1 --kx -100 -1 --ky 1 100 -o out   (mu, tau_s, kx, ky) sweep
+  dustygas linear angle runs/si3d --sweep out/sweep.h5                     theta_k(t) of a run vs the sweep
 
 Conventions: x radial, y azimuthal, z vertical, Omega = 1, shear -(3/2) x y_hat;
 perturbations ~ exp(i k.x - i omega t), growth rate = Im omega. Velocities in eta v_K,
@@ -100,6 +101,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     w = sub.add_parser("sweep", help="shearing-wave amplification over a (mu, tau_s, kx0, ky) grid; HDF5 + PNG",
                        description=SWEEP_DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_sweep_arguments(w)
+
+    from ._linear_angle import ANGLE_DESCRIPTION, add_angle_arguments
+
+    a = sub.add_parser("angle", help="theta_k(t) of a run's dust surface density next to a sweep's prediction",
+                       description=ANGLE_DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_angle_arguments(a)
 
 
 def _vz(text: str):
@@ -245,4 +252,8 @@ def main(args: argparse.Namespace) -> int:
         from ._linear_sweep import main as sweep_main
 
         return sweep_main(args)
-    raise UserError("linear: choose a subcommand: mode, map, shear or sweep (see dustygas linear --help)")
+    if cmd == "angle":
+        from ._linear_angle import main as angle_main
+
+        return angle_main(args)
+    raise UserError("linear: choose a subcommand: mode, map, shear, sweep or angle (see dustygas linear --help)")
