@@ -150,6 +150,11 @@ def main(args) -> int:
         i, j = np.unravel_index(np.nanargmax(v), v.shape)
         print(f"largest {spec.metric} {v[i, j]:.6g} at mu = {spec.mu[i]:g}, taus = {spec.taus[j]:g}: "
               f"K_x0 = {pref['kx0'][i, j]:g}, K_y = {pref['ky'][i, j]:g}, angle arctan(K_y/K_x(t_end)) = "
-              f"{pref['angle_deg'][i, j]:.2f} deg")
+              f"{pref['angle_deg'][i, j]:.2f} deg" + (" -- on the edge of the (K_x0, K_y) grid: the preferred wave may "
+                                                     "lie outside it" if pref["at_edge"][i, j] else ""))
+    edges = int(pref["at_edge"].sum())
+    if edges:
+        print(f"{edges} of {pref['at_edge'].size} (mu, taus) have their maximum on the edge of the (K_x0, K_y) grid",
+              file=sys.stderr)
     print("wrote " + ", ".join(str(p) for p in paths), file=sys.stderr)
     return 0

@@ -280,8 +280,9 @@ class SweepResult:
         """Preferred wavevector per (μ, τ_s): arrays of shape (n_mu, n_taus).
 
         Keys: ``angle_deg`` = arctan(k_y / k_x(t_end)) in degrees, ``kx0``, ``ky``, ``kx_end``,
-        ``value`` (the maximised ``metric``) and ``angle0_deg`` = arctan(k_y/k_x0). NaN where
-        every point of that (μ, τ_s) is NaN.
+        ``value`` (the maximised ``metric``), ``angle0_deg`` = arctan(k_y/k_x0) and ``at_edge``
+        (1 where the maximum lies on the edge of the (k_x0, k_y) grid: the true preferred wave may
+        lie outside it). NaN where every point of that (μ, τ_s) is NaN.
         """
         metric = metric or self.spec.metric
         if metric not in METRICS:
@@ -296,9 +297,13 @@ class SweepResult:
         ky = np.asarray(self.spec.ky)[j]
         t1 = self.spec.end_times(kx0, ky)
         kx_end = kx0 + SHEAR_RATE * ky * t1
+        nx, ny = a.shape[2:]
+        edge = ((nx > 1) & ((i == 0) | (i == nx - 1))) | ((ny > 1) & ((j == 0) | (j == ny - 1)))
         out = {"angle_deg": _angle(kx_end, ky), "angle0_deg": _angle(kx0, ky), "kx0": kx0, "ky": ky,
                "kx_end": kx_end, "value": np.take_along_axis(flat, idx[..., None], -1)[..., 0]}
-        return {k: np.where(ok, v, np.nan) for k, v in out.items()}
+        out = {k: np.where(ok, v, np.nan) for k, v in out.items()}
+        out["at_edge"] = (edge & ok).astype(np.int8)
+        return out
 
     def preferred_series(self) -> dict[str, np.ndarray]:
         """The preferred wave at every sample time (needs ``times``): arrays (n_mu, n_taus, n_times).

@@ -144,12 +144,13 @@ def plot_growth_vs_k(k, curves: list[tuple[str, np.ndarray]], path: Path, title:
 # ---------------------------------------------------------------------------- shearing-wave sweeps
 
 
-def _cells(ax, values: np.ndarray, xs, ys, xlabel: str, ylabel: str, cmap: str, annotate: str | None = None):
+def _cells(ax, values: np.ndarray, xs, ys, xlabel: str, ylabel: str, cmap: str, annotate: str | None = None,
+           **kw):
     """A (len(ys), len(xs)) array as labelled cells (works for any grid, one point included)."""
     im = ax.pcolormesh(np.arange(len(xs) + 1) - 0.5, np.arange(len(ys) + 1) - 0.5, values, cmap=cmap,
-                       shading="flat")
-    step_x = max(1, len(xs) // 8)
-    step_y = max(1, len(ys) // 8)
+                       shading="flat", **kw)
+    step_x = max(1, -(-len(xs) // 6))
+    step_y = max(1, -(-len(ys) // 8))
     ax.set_xticks(np.arange(len(xs))[::step_x], [f"{v:.3g}" for v in xs][::step_x])
     ax.set_yticks(np.arange(len(ys))[::step_y], [f"{v:.3g}" for v in ys][::step_y])
     ax.minorticks_off()
@@ -157,9 +158,12 @@ def _cells(ax, values: np.ndarray, xs, ys, xlabel: str, ylabel: str, cmap: str, 
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     if annotate and values.size <= 64:
+        from matplotlib import patheffects
+
+        halo = [patheffects.withStroke(linewidth=2, foreground="w")]
         for (j, i), v in np.ndenumerate(values):
             if np.isfinite(v):
-                ax.text(i, j, format(v, annotate), ha="center", va="center", fontsize=7, color="w")
+                ax.text(i, j, format(v, annotate), ha="center", va="center", fontsize=7, color="k", path_effects=halo)
     return im
 
 
@@ -208,7 +212,12 @@ def plot_sweep(result, outdir: Path) -> list[Path]:
             title="shearing-wave sweep: largest amplification per (mu, taus)", description=note)
         fig, ax = new_figure(1, 1, width=5.6, height=4.2)
         im = _cells(ax, pref["angle_deg"].T, mu, taus, r"dust-to-gas ratio $\mu$", r"stopping time $\tau_s$",
-                    "twilight_shifted", ".1f")
+                    "twilight_shifted", ".1f", vmin=-90.0, vmax=90.0)  # a cyclic map: -90 and 90 deg are one angle
+        for (jj, ii), e in np.ndenumerate(pref["at_edge"].T):
+            if e:
+                ax.plot([ii], [jj - 0.3], marker="^", color="c", ms=4)
+        if pref["at_edge"].any():
+            note += "\ncyan triangles: maximum on the edge of the (K_x0, K_y) grid"
         fig.colorbar(im, ax=ax, label=r"preferred angle $\arctan(K_y/K_x(t_{end}))$ [deg]")
         ax.set_title("Preferred wavevector of the shearing-wave sweep\n" + note, fontsize=8)
         paths += save_figure(fig, outdir / "sweep_angle.png", [
@@ -217,6 +226,7 @@ def plot_sweep(result, outdir: Path) -> list[Path]:
             Column("angle0_deg", pref["angle0_deg"], "deg", "arctan(K_y / K_x0), its initial angle"),
             Column("kx0", pref["kx0"], "1/(eta r)", "initial K_x"), Column("ky", pref["ky"], "1/(eta r)", "K_y"),
             Column("kx_end", pref["kx_end"], "1/(eta r)", "K_x at t_end"),
-            Column("value", pref["value"], "1", metric)],
+            Column("value", pref["value"], "1", metric),
+            Column("at_edge", pref["at_edge"], "1", "1: the maximum is on the edge of the (K_x0, K_y) grid")],
             title="shearing-wave sweep: preferred wavevector angle", description=note)
     return paths
