@@ -57,6 +57,11 @@ __all__ = ["SILinear", "StreamingBox", "streaming_box"]
 #: linB at 64² then grows 6.2 % too slowly instead of 2.1 %), and HLLC
 #: (:mod:`dustygas.particles.coupling` lists what mattered)
 SI_SCHEME = with_defaults(SCHEME, reconstruction="ppm-cs", riemann="hllc")
+#: the mesh of the one-wavelength x-z boxes
+SI_GRID = {
+    "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
+    "nz": Param(64, "cells along z (vertical); L_z = 2 pi Pi / |K_z|", min=4),
+}
 
 
 @dataclass
@@ -208,10 +213,7 @@ class SILinear(Problem):
     summary = "One linear streaming-instability eigenmode in a 2D x-z box of gas + particles (YJ07, BS10)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=6.0, dt_history=0.01),
-        "grid": {
-            "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
-            "nz": Param(64, "cells along z (vertical); L_z = 2 pi Pi / |K_z|", min=4),
-        },
+        "grid": SI_GRID,
         "scheme": SI_SCHEME,
         "particles": PARTICLES,
         "problem": {

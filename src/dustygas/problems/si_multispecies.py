@@ -18,7 +18,7 @@ from ..errors import ConfigError
 from ..particles.params import PARTICLES
 from ..runner import RUN_SCHEMA
 from . import Problem, preset, register
-from .si_linear import SI_SCHEME, _scheme, streaming_box
+from .si_linear import SI_GRID, SI_SCHEME, _scheme, streaming_box
 
 __all__ = ["SIMultiSpecies"]
 
@@ -29,10 +29,7 @@ class SIMultiSpecies(Problem):
     summary = "One linear streaming-instability eigenmode of gas + N particle species in a 2D x-z box (BKP19 linC)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=8.0, dt_history=0.01),
-        "grid": {
-            "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
-            "nz": Param(64, "cells along z (vertical); L_z = 2 pi Pi / |K_z|", min=4),
-        },
+        "grid": SI_GRID,
         "scheme": SI_SCHEME,
         "particles": PARTICLES,
         "problem": {
