@@ -82,7 +82,7 @@ def test_reproduce_command_writes_both_figures(tmp_path):
     proc = cli("reproduce", "fig3.1", "fig3.5", "--output", "figs", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     names = sorted(p.name for p in (tmp_path / "figs").iterdir())
-    assert names == ["fig3_1.csv", "fig3_1.png", "fig3_5.csv", "fig3_5.png"]
+    assert names == ["fig3_1.csv", "fig3_1.png", "fig3_5.csv", "fig3_5.png", "gallery", "index.html"]
     peak = read_table(tmp_path / "figs" / "fig3_5.csv")["minus_vr_over_vK"].max()
     np.testing.assert_allclose(peak, (np.hypot(3.75e-5, 7.5e-3) + 3.75e-5) / 2, rtol=1e-3)
 

@@ -26,6 +26,9 @@ growth
     (3.9-3.10), fragmentation sizes (3.9), Vericel et al. (2021) analytic growth.
 timestep
     Courant, acceleration and drag time-step criteria (eqs. 2.12-2.15).
+gravity
+    Self-gravity in the shearing box: G~ = 4πGρ/Ω², Hill density, radius and energy, Toomre's
+    Q and dispersion relation.
 """
 
 from .disk import (

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .neighbours import _store_neighbours, minimum_image
+from .pairs import minimum_image, store_neighbours
 
 __all__ = ["build_tree", "tree_search"]
 
@@ -191,4 +191,4 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
                 dy -= length[1] * np.rint(dy * inv_l[1])
                 dz -= length[2] * np.rint(dz * inv_l[2])
                 d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
+            store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)

@@ -38,6 +38,8 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import SimulationError
+from .kdtree import build_tree, tree_search
+from .pairs import minimum_image, store_neighbours
 
 __all__ = ["Box", "NeighbourList", "NeighbourFinder", "minimum_image"]
 
@@ -80,17 +82,6 @@ class Box:
         """Put positions back into ``[lo, hi)`` along periodic dimensions (in place)."""
         lo, length, per = self.arrays()
         _wrap(pos, lo, length, per)
-
-
-@njit(cache=True)
-def minimum_image(dx: float, length: float, periodic: bool) -> float:
-    """Separation ``dx`` mapped to the nearest periodic image (unchanged when not periodic)."""
-    if periodic:
-        if dx > 0.5 * length:
-            return dx - length
-        if dx < -0.5 * length:
-            return dx + length
-    return dx
 
 
 @njit(parallel=True, cache=True)
@@ -264,31 +255,7 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
                 if mi_z:
                     dz -= length[2] * np.rint(dz * inv_lz)
                 d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
-
-
-@njit(inline="always")
-def _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap):
-    """Write the candidates with d2 < 0 (inside max(h_a, h_b) * radius) into row a of the list.
-
-    ``count[a]`` is the true number of neighbours even when it exceeds the row capacity (the caller
-    then grows the list and searches again); ``overlap[a]`` records a neighbour at zero separation.
-    """
-    cap = index.shape[1]
-    n = 0
-    hit = -1
-    for j in range(m):
-        if d2[j] < 0.0:
-            b = pid[j]
-            if exclude_self and b == a:
-                continue
-            if d2[j] == -r2 * max(ha2, ph2[j]):
-                hit = b  # zero separation
-            if n < cap:
-                index[a, n] = b
-            n += 1
-    count[a] = n
-    overlap[a] = hit
+            store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
 
 
 @njit(parallel=True, cache=True)
@@ -375,8 +342,6 @@ class NeighbourFinder:
         """A permutation listing particles cell by cell (or leaf by leaf): storing them in this
         order keeps neighbours close in memory."""
         if self.choose(h) == "tree":
-            from .kdtree import build_tree
-
             return build_tree(pos, h, self.box.ndim, self.leaf_size)[0]
         origin, inv_size, ncell, _, per = self._grid([pos], float(h.max(initial=0.0)))
         return _bin(pos, origin, inv_size, ncell, per)[1]
@@ -416,8 +381,6 @@ class NeighbourFinder:
         return self._finish(index, count, overlap, qpos, qh, qorder, allow_overlap)
 
     def _find_tree(self, pos, h, qpos, qh, same, allow_overlap=False) -> NeighbourList:
-        from .kdtree import build_tree, tree_search
-
         lo, length, per = self.box.arrays()
         for d in range(self.box.ndim):
             if per[d] and self.radius * max(h.max(initial=0.0), qh.max(initial=0.0)) > 0.5 * length[d]:
