@@ -1,12 +1,13 @@
 """``dustygas linear``: output, the JSON contract, files written, one-line errors."""
 
 import json
+import re
 
 import h5py
 import numpy as np
 import pytest
 
-from dustygas.linear import growth_rate
+from dustygas.linear import StreamingParams, operator_matrix
 from dustygas.linear.sweep_run import sweep
 
 from foundation._cli import cli
@@ -20,17 +21,17 @@ def _one_line_error(proc, fragment):
 
 
 def test_mode_text_prints_linA(tmp_path):
-    """The printed growth rate, frequency and u_x against Youdin & Johansen (2007) Table 1 (7 digits),
-    with YJ07's epsilon given as --eps (the alias of --mu)."""
+    """With YJ07's drag linearisation the printed mode is Youdin & Johansen (2007) Table 1's linA to the
+    seven digits they publish: omega = 0.3480127 + 0.4190204i (standard sign), u_x = -0.1691398 + 0.0361553i."""
     proc = cli("linear", "mode", "--taus", "0.1", "--eps", "3", "--kx", "30", "--kz", "30", "--drag", "yj07",
                cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
-    lines = proc.stdout.splitlines()
-    growth = float(next(ln for ln in lines if ln.startswith("growth rate")).split("=")[-1].split()[0])
-    freq = float(next(ln for ln in lines if ln.startswith("frequency")).split("=")[-1].split()[0])
-    ux = next(ln for ln in lines if ln.strip().startswith("ux ")).split()
-    assert abs(growth - 0.4190204) <= 1e-7 and abs(freq - 0.3480127) <= 1e-7
-    assert abs(complex(float(ux[1]), float(ux[2][:-1])) - (-0.1691398 + 0.0361553j)) <= 1e-7
+    number = r"([+-]\d+\.\d+)"
+    growth = float(re.search(r"s = Im omega = " + number, proc.stdout).group(1))
+    frequency = float(re.search(r"Re omega = " + number, proc.stdout).group(1))
+    ux = re.search(r"ux\s+" + number + r"\s*" + number + "i", proc.stdout)
+    assert abs(growth - 0.4190204) <= 5e-8 and abs(frequency - 0.3480127) <= 5e-8, proc.stdout
+    assert abs(float(ux.group(1)) + 0.1691398) <= 5e-8 and abs(float(ux.group(2)) - 0.0361553) <= 5e-8
 
 
 def test_mode_json_contract(tmp_path):
@@ -79,13 +80,19 @@ def test_map_writes_hdf5_json_png(tmp_path):
     assert proc.returncode == 0, proc.stderr
     with h5py.File(tmp_path / "out" / "growth_map.h5") as f:
         assert list(f.attrs["kx_range"]) == [1.0, 1000.0] and f.attrs["kz"] == 30.0
-        g, kx, mu, taus = (f[k][()] for k in ("growth_rate", "kx", "mu", "taus"))
-    # every written maximum is the growth rate at the written K_x (at K_z = 30), and the default
-    # grid is log-spaced over mu in [0.01, 10], taus in [1e-3, 3]
-    T, M = np.meshgrid(taus, mu, indexing="ij")
-    assert np.max(np.abs(growth_rate(taus=T, mu=M, kx=kx, kz=30.0) - g)) <= 1e-12
+        g, kx, taus, mu = (f[k][()] for k in ("growth_rate", "kx", "taus", "mu"))
+    assert g.shape == (6, 6) and np.all(np.isfinite(g))
+    # every cell is the fastest mode over K_x at K_z = 30: LAPACK's eigenvalues of the operator at the
+    # reported K_x give the reported rate (1e-9), and K_x 1 % either side grows no faster (1e-9)
+    def lapack(i, j, k):  # rows are tau_s, columns mu (the printed maximum: tau_s = 0.6049, mu = 10)
+        params = StreamingParams(taus=float(taus[i]), mu=float(mu[j]), kx=float(k), kz=30.0, Pi=0.05)
+        return np.linalg.eigvals(operator_matrix(params)).real.max()
+
+    for i, j in [(0, 0), (2, 3), (4, 5), (5, 1)]:
+        assert lapack(i, j, kx[i, j]) == pytest.approx(g[i, j], rel=1e-9, abs=1e-12)
+        assert max(lapack(i, j, kx[i, j] * 0.99), lapack(i, j, kx[i, j] * 1.01)) <= g[i, j] * (1 + 1e-9)
     assert mu[0] == pytest.approx(0.01) and mu[-1] == pytest.approx(10.0) and taus[-1] == pytest.approx(3.0)
-    assert (tmp_path / "out" / "growth_map.png").is_file()
+    assert (tmp_path / "out" / "growth_map.png").stat().st_size > 10_000
     assert json.loads((tmp_path / "out" / "growth_map.json").read_text())["attrs"]["kz"] == 30.0
     _one_line_error(cli("linear", "map", "--method", "spiral", "-o", "o2", cwd=tmp_path), "method")
     assert not (tmp_path / "o2").exists()
@@ -101,7 +108,15 @@ def test_shear_writes_csv_png(tmp_path):
     assert names[:2] == ["t", "kx"] and "abs_drho_p_0" in names
     # the scipy (LSODA) swing against the compiled Dormand-Prince integration of the sweep: 1e-6
     amp = float(proc.stdout.split()[2])
+    rows = [ln.split(",") for ln in text if not ln.startswith("#")][1:]
+    drho_p = np.array([float(r[names.index("abs_drho_p_0")]) for r in rows])
+    assert amp == pytest.approx(drho_p[-1] / drho_p[0], rel=1e-7)  # the printed number is the file's
     r = sweep(mu=[3.0], taus=[0.1], kx=[-30.0], ky=[5.0], kz=30.0, t_end="swing", rtol=1e-9)
     assert amp == pytest.approx(r["dust_final"].item(), rel=1e-6)
-    _one_line_error(cli("linear", "shear", "--taus", "0.1", "--mu", "3", "--kx", "30", "--ky", "5", cwd=tmp_path),
+    # k_y = 0: no shear of the wave, the linA eigenmode grows at Benitez-Llambay et al. (2019)'s s = 0.4190091323
+    flat = cli("linear", "shear", "--taus", "0.1", "--eps", "3", "--kx", "30", "--ky", "0", "--kz", "30",
+               "--t-end", "3", "-o", "sw0", cwd=tmp_path)
+    assert flat.returncode == 0, flat.stderr
+    assert float(flat.stdout.split()[2]) == pytest.approx(np.exp(3 * 0.4190091323), rel=1e-7)
+    _one_line_error(cli("linear", "shear", "--taus", "0.1", "--eps", "3", "--kx", "30", "--ky", "5", cwd=tmp_path),
                     "t_span is needed")

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
 
-from .._registry import import_submodules, unknown_name
+from .._registry import Discovery, unknown_name
 from .captions import THESIS_CAPTIONS
 
 if TYPE_CHECKING:
@@ -70,7 +70,6 @@ class FigureSpec:
 
 _FIGURES: dict[str, FigureSpec] = {}
 _CHECKS: dict[str, Callable[[Path], list["Check"]]] = {}
-_DISCOVERED = False
 
 
 def figure(name: str, summary: str, cost: str = "seconds", caption: str | None = None,
@@ -98,12 +97,7 @@ def register_checks(name: str) -> Callable:
     return deco
 
 
-def _discover() -> None:
-    global _DISCOVERED
-    if _DISCOVERED:
-        return
-    _DISCOVERED = True
-    import_submodules(__name__, __path__)
+_discover = Discovery(__name__, __path__)
 
 
 def _key(name: str) -> tuple:
