@@ -74,10 +74,16 @@ def test_ky_zero_is_the_axisymmetric_growth_rate_at_every_point():
     assert not r["failed"].any()
 
 
-def test_small_ky_tends_to_the_axisymmetric_limit():
-    """k_y = 1e-6: over t = 1 k_x moves by 1.5e-6; the growth is the axisymmetric one to 1e-6."""
-    r = sweep(mu=[3.0], taus=[0.1], kx=[30.0, -30.0], ky=[1e-6], kz=30.0, t_end=1.0, rtol=1e-9, atol=1e-14)
-    assert np.max(np.abs(r["mean_growth"][0, 0, :, 0] - 0.4190091323)) <= 1e-6
+def test_small_ky_tends_to_the_axisymmetric_limit_at_every_point():
+    """k_y = 1e-6 over the grid of the k_y = 0 test (and k_x of both signs): over t = 1 k_x moves by
+    1.5e-6, and the growth is the axisymmetric one to 1e-6 at every point; at linA it is Benitez-Llambay
+    et al. (2019)'s s = 0.4190091323."""
+    mu, taus, kx = [0.2, 1.0, 3.0], [0.03, 0.1, 1.0], [-30.0, 3.0, 10.0, 30.0, 100.0]
+    r = sweep(mu=mu, taus=taus, kx=kx, ky=[1e-6], kz=30.0, t_end=1.0, rtol=1e-9, atol=1e-14)
+    M, T, KX = np.meshgrid(mu, taus, kx, indexing="ij")
+    s = growth_rate(taus=T, mu=M, kx=np.abs(KX), kz=30.0)
+    assert np.max(np.abs(r["mean_growth"][..., 0] - s)) <= 1e-6
+    assert abs(r["mean_growth"][2, 1, 0, 0] - 0.4190091323) <= 1e-6 and not r["failed"].any()
 
 
 def test_kelvin_swing_amplification_at_every_point():
