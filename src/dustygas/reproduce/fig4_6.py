@@ -29,7 +29,7 @@ from .fig4_2 import PI, THETA, growth_curves, header
 
 #: (tau_s, mu, |K|, run time, cells per wavelength with ``quick``) of the simulated points
 POINTS = ((1.0, 0.1, 0.175, 60.0, 32), (0.1, 0.1, 0.6, 40.0, 32), (0.1, 0.01, 0.55, 120.0, 32),
-          (1.0, 0.01, 0.163, 160.0, 32), (0.01, 0.1, 6.0, 20.0, 16), (0.001, 0.1, 59.7, 20.0, 16))
+          (1.0, 0.01, 0.163, 160.0, 32), (0.01, 0.1, 6.0, 20.0, 32), (0.001, 0.1, 59.7, 20.0, 16))
 
 
 def simulate_point(taus: float, mu: float, k: float, tlim: float, workdir: Path, n: int = 32) -> dict:
