@@ -70,6 +70,8 @@ SI_GRID = {
 }
 SI_TAUS = Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True)
 SI_AMPLITUDE = Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1)
+SI_PRESSURE_FRAME = Param("gas", "global pressure gradient as a force on the gas, or the opposite force on the "
+                          "particles", choices=("gas", "particles"))
 
 
 @dataclass
@@ -232,8 +234,7 @@ class SILinear(Problem):
             "Pi": Param(0.05, "eta v_K / c_s (velocity unit eta v_K = Pi, length unit eta r = Pi H)", min=0.0,
                         min_open=True),
             "amplitude": SI_AMPLITUDE,
-            "pressure_frame": Param("gas", "global pressure gradient as a force on the gas, or the opposite force "
-                                    "on the particles", choices=("gas", "particles")),
+            "pressure_frame": SI_PRESSURE_FRAME,
         },
     }
 

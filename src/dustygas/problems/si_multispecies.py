@@ -20,7 +20,7 @@ from ..errors import ConfigError
 from ..particles.params import PARTICLES
 from ..runner import RUN_SCHEMA
 from . import Problem, preset, register
-from .si_linear import SI_GRID, SI_SCHEME, _scheme, streaming_box
+from .si_linear import SI_GRID, SI_PRESSURE_FRAME, SI_SCHEME, _scheme, streaming_box
 
 __all__ = ["SIMultiSpecies"]
 
@@ -44,15 +44,12 @@ class SIMultiSpecies(Problem):
             "Pi": Param(0.05, "eta v_K / c_s", min=0.0, min_open=True),
             "amplitude": Param(1e-6, "amplitude of delta rho_p / rho_p0 of species 0", min=0.0, min_open=True,
                                max=0.1),
-            "pressure_frame": Param("gas", "global pressure gradient as a force on the gas, or the opposite force "
-                                    "on the particles", choices=("gas", "particles")),
+            "pressure_frame": SI_PRESSURE_FRAME,
         },
     }
 
     def validate(self, cfg) -> None:
         p = cfg.problem
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
         if len(p.taus) != len(p.mu) or not p.taus:
             raise ConfigError(f"problem.taus has {len(p.taus)} species but problem.mu has {len(p.mu)}: give one "
                               "stopping time and one dust-to-gas ratio per species")
