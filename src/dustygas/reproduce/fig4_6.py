@@ -19,7 +19,10 @@ needs 1.3e5 steps to t = 20 at 16² (34 CPU-s), but the runs do not follow the l
 δρ_p grows at 0.115-0.122 for t ≲ 8, while the velocities beat against another component of
 the same wavevector from t ≈ 3 on, and the fit of the eight fields misses theory by 24-70 %
 (16² -30 %, 24² -70 %, four particles per cell -57 %, exponential drag -24 %; amplitudes 1e-8
-to 1e-6 give the same curves, so the defect is linear; 1e-4 and 1e-3 are worse).
+to 1e-6 give the same curves, so the defect is linear; 1e-4 and 1e-3 are worse; a drag step
+dt = 0.02 t_s instead of 0.15 t_s changes nothing to t = 8). The operator there has, beside the
+growing mode, an inertial wave damped at only 5.6e-5 Ω (5.7e-4 Ω at τ_s = 0.01), which whatever
+the initial state misses of the eigenmode excites and nothing removes.
 """
 
 from __future__ import annotations
