@@ -131,7 +131,7 @@ def species(dist: PowerLawSizes, n: int, rule: str = "bins") -> tuple[np.ndarray
 
     >>> t, m, _ = species(PowerLawSizes(mu=1.0, taus_min=1e-4, taus_max=0.1), 3)
     >>> [f"{v:.4g}" for v in t], f"{m.sum():.12f}"
-    (['0.000316', '0.003162', '0.03162'], '1.000000000000')
+    (['0.0003162', '0.003162', '0.03162'], '1.000000000000')
     """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise UserError(f"n = {n!r}: the number of species must be a positive integer")
