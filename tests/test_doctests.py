@@ -1,7 +1,7 @@
 """Every example in a docstring of dustygas is executed and must print what it claims.
 
-Only modules whose source holds an example (``>>>``) are collected: a module without examples
-would be a test that cannot fail. Each collected module must run at least one example.
+Only modules whose source holds an example (``>>>``) that is not ``+SKIP`` are collected: a
+module without examples to run would be a test that cannot fail. Each collected module must run at least one example.
 """
 
 import doctest
@@ -20,7 +20,8 @@ def _modules_with_examples():
         if info.name.endswith("__main__"):
             continue
         origin = importlib.util.find_spec(info.name).origin
-        if origin and ">>>" in Path(origin).read_text(encoding="utf-8"):
+        if origin and any(">>>" in line and "+SKIP" not in line
+                          for line in Path(origin).read_text(encoding="utf-8").splitlines()):
             yield info.name
 
 

@@ -12,7 +12,11 @@ The public API is :mod:`dustygas.api`, re-exported here (``import dustygas as dg
   package :mod:`dustygas.reproduce` of figure functions).
 """
 
+from ._numba_cache import install as _install_numba_cache_guard
 from ._version import __version__
+
+_install_numba_cache_guard()  # before any kernel module is imported (see dustygas._numba_cache)
+
 from .api import (
     export,
     figure_names,

@@ -25,6 +25,8 @@ True
 
 from __future__ import annotations
 
+import sys
+import tomllib
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence
 
@@ -37,13 +39,15 @@ if TYPE_CHECKING:
     from .problems import Problem
     from .reproduce.gallery import FigureRecord
 
-from .config import build_config, load_toml
+from ._version import __version__
+from .config import load_toml, restart_config
 from .errors import UserError
-from .io.hdf5 import read_h5
-from .io.rundir import RunDirectory, default_run_path
+from .io.checkpoint import newest_checkpoint
+from .io.rundir import RunDirectory, check_output_path, default_run_path
+from .preflight import build_engine, check_cadence, check_memory
 from .problems import get_problem as _get_problem
 from .problems import problem_names as _problem_names
-from .runner import RunResult, run_engine
+from .runner import CHECKPOINT_ATTRS, RunResult, run_engine
 
 __all__ = [
     "run", "restart", "get_problem", "problem_names", "problem_parameters",
@@ -85,7 +89,8 @@ def run(
     problem
         Registered name (``dustygas problems`` lists them).
     output
-        Run directory; default ``runs/<problem>`` (numbered if it exists).
+        Run directory; default ``runs/<problem>``. A directory that holds another run is
+        refused unless ``overwrite``; one that another process is writing is always refused.
     config
         TOML files layered over the problem's defaults.
     set
@@ -98,17 +103,19 @@ def run(
         ``False`` (default): no progress output; ``True``: a tqdm bar on stderr; ``None``: the
         bar on a terminal and ``cycle= time= dt=`` lines otherwise (what the CLI does).
 
-    The configuration and the initial state are fully validated before the run directory is
-    created, so a bad input leaves nothing on disk.
+    The configuration, the output path, the memory the set-up needs and the initial state are
+    all validated before the run directory is created, so a bad input leaves nothing on disk.
     """
     prob = _get_problem(problem)
     overrides = list(set)
     if walltime is not None:
         overrides.append(f"run.walltime={float(walltime)!r}")
     cfg = prob.config(config, overrides, data)
-    path = Path(output) if output is not None else default_run_path(problem)
+    check_cadence(cfg.run)
+    path = check_output_path(output) if output is not None else default_run_path(problem)
     RunDirectory(path).check_new(overwrite)
-    engine = prob.build(cfg)
+    check_memory(prob, cfg)
+    engine = build_engine(prob, cfg)
     return run_engine(engine, cfg, path, overwrite=overwrite, progress=progress)
 
 
@@ -118,28 +125,55 @@ def restart(
     walltime: float | None = None,
     progress: bool | None = False,
 ) -> RunResult:
-    """Continue the run in ``path`` from its newest checkpoint (``dustygas run --restart``).
+    """Continue the run in ``path`` from its newest intact checkpoint (``dustygas run --restart``).
 
-    ``set`` may change run-control parameters (e.g. ``run.tlim``) for the continuation.
+    ``set`` (and an edited ``config.toml``) may change run-control parameters (``run.*``, e.g. a
+    later ``run.tlim``); any other change is refused with one line naming the key, as is a
+    checkpoint written by another dustygas version. A damaged newest checkpoint (checksum,
+    truncation) is skipped with a warning for the one before it. ``run.walltime`` is not
+    inherited: give ``walltime`` (``--walltime``) again for each continuation.
     """
     rundir = RunDirectory(path)
-    if not rundir.config_file.exists():
+    if not str(path).strip() or not rundir.path.is_dir():
+        raise UserError(f"{path}: no such run directory")
+    if not rundir.config_file.is_file():
         raise UserError(f"{path}: not a run directory (no config.toml)")
-    saved = load_toml(rundir.config_file)
-    name = saved.get("dustygas", {}).get("problem")
+    edited = load_toml(rundir.config_file)
+    name = edited.get("dustygas", {}).get("problem") if isinstance(edited.get("dustygas"), Mapping) else None
     if not isinstance(name, str):
-        raise UserError(f"{rundir.config_file}: no problem name")
+        raise UserError(f"{rundir.config_file}: no [dustygas] problem name")
     prob = _get_problem(name)
-    overrides = list(set)
-    if walltime is not None:
-        overrides.append(f"run.walltime={float(walltime)!r}")
-    cfg = prob.config(overrides=overrides, data=saved)
-    checkpoints = rundir.checkpoints()
-    if not checkpoints:
-        raise UserError(f"{path}: no checkpoint to restart from")
-    state = read_h5(checkpoints[-1])
-    engine = prob.build(cfg)
-    return run_engine(engine, cfg, path, progress=progress, restart_from=state)
+    rundir.lock()  # from here on no other process writes the directory
+    try:
+        found = newest_checkpoint(rundir, problem=name, required=CHECKPOINT_ATTRS)
+        attrs = found.attrs
+        if attrs["dustygas_version"] != __version__:
+            raise UserError(
+                f"{found.path}: written by dustygas {attrs['dustygas_version']}, this is {__version__}; "
+                "continue the run with the version that wrote it (restarts are bit-identical within one version)"
+            )
+        try:
+            stored = tomllib.loads(str(attrs["config"]))
+        except (tomllib.TOMLDecodeError, ValueError):
+            raise UserError(f"{found.path}: the stored configuration cannot be read") from None
+        overrides = list(set)
+        if walltime is not None:
+            overrides.append(f"run.walltime={float(walltime)!r}")
+        cfg = restart_config(prob.schema, stored, edited, overrides, problem_name=name,
+                             source=str(rundir.config_file))
+        prob.validate(cfg)
+        check_cadence(cfg.run, float(attrs["engine_t"]))
+        for line in found.skipped:
+            message = (f"warning: skipping checkpoint {line}; restarting from {found.path.name} "
+                       f"(time={float(attrs['engine_t']):.6g})")
+            print(f"dustygas: {message}", file=sys.stderr, flush=True)
+            rundir.log(message)
+        check_memory(prob, cfg)
+        engine = build_engine(prob, cfg)
+    except BaseException:
+        rundir.unlock(discard=True)  # a refused restart leaves the directory as it was
+        raise
+    return run_engine(engine, cfg, rundir, progress=progress, restart_from=(found.arrays, attrs))
 
 
 # ------------------------------------------------------------------------------------ reading

@@ -47,6 +47,7 @@ __all__ = [
     "with_defaults",
     "dump_toml",
     "describe_schema",
+    "restart_config",
 ]
 
 _SCALAR_TYPES = ("float", "int", "bool", "str")
@@ -106,6 +107,9 @@ class Param:
         Allowed values for strings (or numbers).
     length
         Required list length, if fixed.
+    allow_inf
+        Accept ``inf``/``-inf`` (automatically true when the default is infinite); otherwise a
+        float must be finite.
     """
 
     default: Any
@@ -118,10 +122,14 @@ class Param:
     max_open: bool = False
     choices: tuple | None = None
     length: int | None = None
+    allow_inf: bool = False
 
     def __post_init__(self) -> None:
         if self.type is None:
             object.__setattr__(self, "type", _infer_type(self.default))
+        defaults = self.default if isinstance(self.default, (list, tuple)) else [self.default]
+        if any(isinstance(v, float) and math.isinf(v) for v in defaults):
+            object.__setattr__(self, "allow_inf", True)
         if self.type not in _SCALAR_TYPES + _LIST_TYPES:
             raise TypeError(f"unknown parameter type {self.type!r}")
         if self.choices is not None:
@@ -202,23 +210,41 @@ def _suggest(word: str, options: Iterable[str]) -> str:
 
 
 def _fmt(value: Any) -> str:
-    return repr(value) if isinstance(value, str) else str(value)
+    """A value as it appears in a one-line message (strings quoted, long values shortened)."""
+    if isinstance(value, int) and value.bit_length() > 100:  # too long to print in full (or at all)
+        return f"~{'-' if value < 0 else ''}1e{int(value.bit_length() * math.log10(2))}"
+    try:
+        text = repr(value) if isinstance(value, str) else str(value)
+    except ValueError:  # e.g. an integer too long to print
+        text = f"a {type(value).__name__}"
+    text = text.replace("\n", "\\n").replace("\r", "\\r")
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
-def _coerce_scalar(kind: str, value: Any, where: str) -> Any:
+_INT64 = 2**63 - 1
+
+
+def _coerce_scalar(kind: str, value: Any, where: str, allow_inf: bool = False) -> Any:
     if kind == "bool":
         if isinstance(value, bool):
             return value
     elif kind == "int":
-        if isinstance(value, int) and not isinstance(value, bool):
-            return value
         if isinstance(value, float) and value.is_integer():
-            return int(value)
+            value = int(value)
+        if isinstance(value, int) and not isinstance(value, bool):
+            if abs(value) > _INT64:
+                raise ConfigError(f"{where} = {_fmt(value)}: expected an integer of magnitude below 2^63")
+            return value
     elif kind == "float":
         if isinstance(value, (int, float)) and not isinstance(value, bool):
-            value = float(value)
+            try:
+                value = float(value)
+            except OverflowError:
+                raise ConfigError(f"{where} = {_fmt(value)}: expected a number of magnitude below 1.8e308") from None
             if math.isnan(value):
                 raise ConfigError(f"{where} = nan: expected a number")
+            if math.isinf(value) and not allow_inf:
+                raise ConfigError(f"{where} = {value}: expected a finite number")
             return value
     elif kind == "str":
         if isinstance(value, str):
@@ -262,14 +288,14 @@ def validate_value(p: Param, value: Any, where: str) -> Any:
         if not isinstance(value, (list, tuple)):
             value = [value]  # a scalar is a one-item list
         item_kind = p.type.removesuffix("_list")
-        out = [_coerce_scalar(item_kind, v, where) for v in value]
+        out = [_coerce_scalar(item_kind, v, where, p.allow_inf) for v in value]
         if p.length is not None and len(out) != p.length:
             raise ConfigError(f"{where} has {len(out)} items: expected {p.length}")
         if not out:
             raise ConfigError(f"{where} is empty: expected {_TYPE_WORDS[p.type]}")
         items = out
     else:
-        out = _coerce_scalar(p.type, value, where)
+        out = _coerce_scalar(p.type, value, where, p.allow_inf)
         items = [out]
     for item in items:
         if p.choices is not None and item not in p.choices:
@@ -397,14 +423,20 @@ def load_toml(path: str | Path) -> dict:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such configuration file") from None
+    except IsADirectoryError:
+        raise ConfigError(f"{path}: is a directory, not a configuration file") from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
     except UnicodeDecodeError:
         raise ConfigError(f"{path}: not a UTF-8 text file") from None
+    except ValueError:  # a NUL byte in the name
+        raise ConfigError(f"{_fmt(str(path))}: not a valid file name") from None
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    except (ValueError, RecursionError) as exc:  # e.g. an integer literal too long to convert
+        raise ConfigError(f"{path}: invalid TOML: {str(exc).splitlines()[0][:100]}") from None
 
 
 def parse_override(text: str) -> tuple[str, str, Any]:
@@ -418,17 +450,19 @@ def parse_override(text: str) -> tuple[str, str, Any]:
     ('particles', 'taus', [0.1, 1.0])
     """
     if "=" not in text:
-        raise ConfigError(f"--set {text!r}: expected section.key=value")
+        raise ConfigError(f"--set {_fmt(text)}: expected section.key=value")
     name, raw = text.split("=", 1)
     name, raw = name.strip(), raw.strip()
+    if "\n" in raw or "\r" in raw:
+        raise ConfigError(f"--set {_fmt(text)}: the value spans several lines")
     if name.count(".") != 1 or not all(name.split(".")):
-        raise ConfigError(f"--set {text!r}: expected section.key=value (one dot in the name)")
+        raise ConfigError(f"--set {_fmt(text)}: expected section.key=value (one dot in the name)")
     section, key = name.split(".")
     try:
         value = tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
-        if raw.startswith(("[", "{", '"', "'")):
-            raise ConfigError(f"--set {text!r}: value is not valid TOML") from None
+    except (tomllib.TOMLDecodeError, ValueError, RecursionError, KeyError):
+        if raw.startswith(("[", "{", '"', "'")) or "\n" in raw:
+            raise ConfigError(f"--set {_fmt(text)}: value is not valid TOML") from None
         value = raw
     return section, key, value
 
@@ -455,6 +489,65 @@ def build_config(
     cfg = Config(values, schema, problem_name)
     check_limits(cfg)
     return cfg
+
+
+# --------------------------------------------------------------------------- restarts
+
+
+def restart_config(
+    schema: Schema,
+    stored: Mapping,
+    edited: Mapping,
+    overrides: Iterable[str] = (),
+    problem_name: str = "",
+    mutable: tuple[str, ...] = ("run",),
+    per_invocation: tuple[str, ...] = ("run.walltime",),
+    source: str = "config.toml",
+) -> Config:
+    """The configuration of a restart: the checkpoint's physics, run control from the user.
+
+    Parameters
+    ----------
+    stored
+        The configuration stored in the checkpoint (authoritative for everything outside the
+        ``mutable`` sections).
+    edited
+        The run directory's ``config.toml`` as the user left it: its ``mutable`` sections are
+        taken (e.g. a longer ``run.tlim``); every other key must be present and equal to the
+        checkpoint's, else a one-line :class:`ConfigError` names the key.
+    overrides
+        ``--set section.key=value``; only keys of the ``mutable`` sections may change.
+    per_invocation
+        Keys that belong to one invocation and are not inherited (the wall-clock limit): they
+        restart from their defaults unless ``overrides`` set them.
+    """
+    values = {s: {k: p.default for k, p in params.items()} for s, params in schema.items()}
+    _merge(schema, values, stored, "checkpoint")
+    fixed = {s: dict(values[s]) for s in values if s not in mutable}
+    checked = {s: {k: p.default for k, p in params.items()} for s, params in schema.items()}
+    _merge(schema, checked, edited, source)  # unknown keys, wrong types, ranges: the usual errors
+    rule = f"a restart may change only {', '.join(m + '.*' for m in mutable)} (start a new run with -o DIR to change the physics)"
+    for section, table in fixed.items():
+        given = edited.get(section, {})
+        for key, value in table.items():
+            if not isinstance(given, Mapping) or key not in given:
+                raise ConfigError(f"{source}: {section}.{key} is missing (the checkpoint has {_fmt(value)}); {rule}")
+            if checked[section][key] != value:
+                raise ConfigError(f"{source}: {section}.{key} = {_fmt(checked[section][key])} differs from the "
+                                  f"checkpoint's {_fmt(value)}; {rule}")
+    for section in mutable:
+        if section in schema:
+            values[section].update({k: v for k, v in checked[section].items() if k in edited.get(section, {})})
+    for dotted in per_invocation:
+        section, key = dotted.split(".")
+        if section in schema and key in schema[section]:
+            values[section][key] = schema[section][key].default
+    for text in overrides:
+        section, key, value = parse_override(text)
+        if section in schema and section not in mutable and key in schema[section]:
+            raise ConfigError(f"--set {_fmt(text)}: {rule}; {section}.{key} stays {_fmt(fixed[section][key])}")
+        _merge(schema, values, {section: {key: value}}, "--set")
+    return Config(values, schema, problem_name)
 
 
 # --------------------------------------------------------------------------- output

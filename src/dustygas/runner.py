@@ -3,8 +3,8 @@
 An *engine* (grid gas, grid gas + particles, SPH, ...) owns the simulation state and knows how
 to advance it; a *problem* (see :mod:`dustygas.problems`) owns the parameters and builds an
 engine holding the initial state. The loop here does everything else: time-step control,
-snapshots, history, checkpoints, wall-time limits, signals, progress output, restarts and the
-final throughput line.
+snapshots, history, checkpoints, wall-time limits, signals, progress output, restarts, the
+thread count and the final throughput line.
 
 The engine protocol (:class:`Engine`) is deliberately small::
 
@@ -17,16 +17,38 @@ The engine protocol (:class:`Engine`) is deliberately small::
     engine.restore(arrays, attrs)   inverse of checkpoint() on a freshly built engine
     engine.work_units, engine.work_label     e.g. (64*64, "zone-cycles")
 
-An engine may also have ``messages() -> list[str]``: log lines (warnings, events) produced since
-the last call, which the loop writes to ``log.txt`` and stderr after every step.
+Optional hooks, with the default used when they are absent:
 
-Restarting rebuilds the engine from the run's ``config.toml`` with the problem's ``build`` and
-then calls ``restore`` with the newest checkpoint, so a run killed at any moment continues to
-outputs identical to an uninterrupted run.
+* ``engine.messages() -> list[str]``: log lines (warnings, events) produced since the last
+  call, which the loop writes to ``log.txt`` and stderr after every step [none];
+* ``problem.memory_estimate(cfg) -> int | None``: bytes the engine will need, checked against
+  the machine's available memory before ``build`` allocates anything
+  (:mod:`dustygas.preflight`) [grid cells and particles counted from the ``grid`` and
+  ``particles`` sections; None: not checked, ``build`` runs under an address-space limit].
+
+When things are written (all files atomically; the directory is locked while a process writes):
+
+* snapshots at the start, every ``dt_snapshot`` and at the end;
+* a history row every ``dt_history`` (every step for 0); ``history.h5`` is rewritten every
+  ``history_wall`` seconds of wall clock, with every checkpoint and at every stop (finished,
+  wall-time limit, signal, invalid state, failed output, unexpected error);
+* checkpoints every ``dt_checkpoint`` of simulated time, every ``checkpoint_wall`` seconds,
+  and at every stop -- a finished run too, so that ``--restart --set run.tlim=T`` extends it.
+  Each holds the configuration, the dustygas version and a checksum
+  (:mod:`dustygas.io.checkpoint`).
+
+``run.threads = 0`` (the default) lets :class:`~dustygas.threads.ThreadTuner` choose the thread
+count from measured step times, between one and numba's current setting; the kernels give
+bit-identical results for any thread count. Exit statuses are listed in :mod:`dustygas.errors`.
+
+Restarting (:func:`dustygas.api.restart`) rebuilds the engine from the configuration stored in
+the newest intact checkpoint with the problem's ``build`` and then calls ``restore``, so a run
+killed at any moment continues to outputs identical to an uninterrupted run.
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import signal
@@ -40,25 +62,34 @@ import numpy as np
 
 from ._version import __version__
 from .config import Config, Param, dump_toml
-from .errors import SimulationError, UserError
+from .errors import EXIT_WALLTIME, OutputError, SimulationError
 from .io.rundir import RunDirectory
+from .threads import ThreadControl
 
-__all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine"]
+__all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine", "config_text", "CHECKPOINT_ATTRS"]
 
 #: Parameters of the run loop; problems copy this section with their own defaults
-#: (``with_defaults(RUN_SCHEMA, tlim=6.0)``).
+#: (``with_defaults(RUN_SCHEMA, tlim=6.0)``). A restart may change any of them.
 RUN_SCHEMA: dict[str, Param] = {
     "tlim": Param(1.0, "simulated time at which the run stops", "code time", min=0.0),
-    "max_cycles": Param(0, "stop after this many steps (0: no limit)", min=0),
+    "max_cycles": Param(0, "stop after this many steps of this invocation (0: no limit)", min=0),
     "dt_snapshot": Param(0.0, "simulated time between snapshots (0: first and last only)", "code time", min=0.0),
     "dt_history": Param(0.0, "simulated time between history rows (0: every step)", "code time", min=0.0),
     "dt_checkpoint": Param(0.0, "simulated time between checkpoints (0: by wall clock only)", "code time", min=0.0),
     "checkpoint_wall": Param(600.0, "wall-clock seconds between checkpoints (0: never by wall clock)", "s", min=0.0),
-    "keep_checkpoints": Param(2, "number of newest checkpoints kept", min=1),
-    "walltime": Param(0.0, "checkpoint and stop after this many wall-clock seconds (0: no limit)", "s", min=0.0),
+    "history_wall": Param(60.0, "wall-clock seconds between rewrites of history.h5 (also written with every "
+                          "checkpoint and at every stop)", "s", min=0.0, min_open=True),
+    "keep_checkpoints": Param(2, "number of newest checkpoints kept (>= 2 survives a damaged newest one)", min=1),
+    "walltime": Param(0.0, "checkpoint and stop (exit status 75) after this many wall-clock seconds of this "
+                      "invocation (0: no limit; a restart does not inherit it)", "s", min=0.0),
     "log_every": Param(100, "steps between progress lines when not on a terminal", min=1),
-    "threads": Param(0, "numba threads (0: all available)", min=0),
+    "threads": Param(0, "numba threads (0: automatic, chosen from measured step times)", min=0),
 }
+
+#: Root attributes every checkpoint written by the loop holds (checked before a restart).
+CHECKPOINT_ATTRS = ("engine_t", "engine_cycle", "loop_snapshot_index", "loop_next_snapshot", "loop_next_history",
+                    "loop_next_checkpoint", "loop_checkpoint_index", "loop_last_snapshot_time", "config",
+                    "dustygas_version")
 
 
 @runtime_checkable
@@ -89,12 +120,13 @@ class RunResult:
 
     path: Path
     engine: Any
-    status: str  # "finished", "walltime", "signal", "max_cycles"
+    status: str  # "finished", "max_cycles", "walltime", "signal"
     cycles: int
     wall: float
     throughput: float
     work_label: str
     exit_code: int = 0
+    threads: int = 1
 
 
 @dataclass
@@ -133,12 +165,15 @@ class _StopFlag:
             signal.signal(sig, handler)
 
 
-def _set_threads(n: int) -> None:
-    if n <= 0:
-        return
-    import numba
-
-    numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
+def _next_time(next_t: float, interval: float, t: float) -> float:
+    """The first output time after ``t`` on the grid ``next_t + k interval`` (no loop: any ``interval``)."""
+    if next_t > t or interval <= 0:
+        return next_t
+    k = math.floor((t - next_t) / interval) + 1
+    out = next_t + k * interval
+    while out <= t:  # rounding: at most a step or two
+        out = max(out + interval, math.nextafter(t, math.inf))
+    return out
 
 
 class RunLoop:
@@ -150,10 +185,12 @@ class RunLoop:
         self.run = cfg.run
         self.rundir = rundir
         self.state = _LoopState()
+        self.config_toml = config_text(cfg)  # the ``config`` attribute of every file (restarts read it)
         # progress: True -> tqdm bar; None -> the bar on a terminal, ``cycle= time= dt=`` lines
         # otherwise (the CLI); False -> no progress output (the Python API's default)
         self.progress = sys.stderr.isatty() if progress is None else bool(progress)
         self.progress_lines = progress is None and not self.progress
+        self._last_history_wall = time.perf_counter()
 
     # ----------------------------------------------------------------- outputs
     def _attrs(self) -> dict[str, Any]:
@@ -162,8 +199,11 @@ class RunLoop:
             "cycle": int(self.engine.cycle),
             "problem": self.cfg.problem_name,
             "dustygas_version": __version__,
-            "config": config_text(self.cfg),  # the full configuration (config.toml) in every file
+            "config": self.config_toml,  # the full configuration (config.toml) in every file
         }
+
+    def _where(self) -> str:
+        return f"time={self.engine.t:.6g} cycle={self.engine.cycle}"
 
     def _write_snapshot(self) -> None:
         arrays, attrs = self.engine.snapshot()
@@ -185,6 +225,7 @@ class RunLoop:
     def _write_history(self) -> None:
         cols = {k: np.asarray(v, dtype=np.float64) for k, v in self.state.history.items()}
         self.rundir.write_history(cols, self._attrs())
+        self._last_history_wall = time.perf_counter()
 
     def write_checkpoint(self) -> Path:
         arrays, attrs = self.engine.checkpoint()
@@ -207,7 +248,7 @@ class RunLoop:
         )
         self._write_history()
         s.checkpoint_index += 1
-        self.rundir.log(f"checkpoint {path.name} at time={self.engine.t:.6g} cycle={self.engine.cycle}")
+        self.rundir.log(f"checkpoint {path.name} at {self._where()}")
         return path
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
@@ -237,28 +278,29 @@ class RunLoop:
         diagnostics = self._finite_diagnostics()
         self._write_snapshot()
         self._record_history(diagnostics)
+        self._write_history()
         self._log_messages()
 
-    def _log_messages(self) -> None:
+    def _log_messages(self, extra: list[str] = ()) -> None:
         messages = getattr(self.engine, "messages", None)
         for line in messages() if messages is not None else ():
             self.rundir.log(line)
             print(f"dustygas: {line}", file=sys.stderr, flush=True)
+        for line in extra:
+            self.rundir.log(line)
 
     def _finite_diagnostics(self) -> dict[str, float]:
         """``engine.history()``, once per history row; a non-finite value stops the run."""
         values = self.engine.history()
         bad = [k for k, v in values.items() if not np.isfinite(v)]
         if bad:
-            raise SimulationError(
-                f"non-finite diagnostics ({', '.join(bad)}) at time={self.engine.t:.6g} cycle={self.engine.cycle}"
-            )
+            raise SimulationError(f"non-finite diagnostics ({', '.join(bad)}) at {self._where()}")
         return values
 
     def loop(self) -> RunResult:
         """Advance to ``tlim``; return how the run ended."""
         run, s, eng = self.run, self.state, self.engine
-        _set_threads(run.threads)
+        threads = ThreadControl(run.threads)
         tlim = run.tlim
         start_wall = time.perf_counter()
         last_ckpt_wall = start_wall
@@ -278,24 +320,26 @@ class RunLoop:
                     if run.max_cycles and eng.cycle - start_cycle >= run.max_cycles:
                         status = "max_cycles"
                         break
+                    threads.before_step()
+                    t_step = time.perf_counter()
                     dt = float(eng.timestep())
                     if not (dt > 0 and math.isfinite(dt)):
-                        raise SimulationError(f"invalid time step dt={dt!r} at time={eng.t:.6g} cycle={eng.cycle}")
+                        raise SimulationError(f"invalid time step dt={dt!r} at {self._where()}")
                     dt = min(dt, tlim - eng.t)
-                    t_step = time.perf_counter()
                     eng.advance(dt)
+                    work += eng.work_units
+                    diagnostics = None
+                    if run.dt_history <= 0 or eng.t >= s.next_history:
+                        diagnostics = self._finite_diagnostics()
                     now = time.perf_counter()
                     step_wall = max(step_wall * 0.9, now - t_step)
-                    work += eng.work_units
-                    self._log_messages()
-                    if run.dt_history <= 0 or eng.t >= s.next_history:
-                        self._record_history(self._finite_diagnostics())
-                        while run.dt_history > 0 and s.next_history <= eng.t:
-                            s.next_history += run.dt_history
+                    self._log_messages(threads.after_step(now - t_step, eng.work_units))
+                    if diagnostics is not None:
+                        self._record_history(diagnostics)
+                        s.next_history = _next_time(s.next_history, run.dt_history, eng.t)
                     if eng.t >= s.next_snapshot:
                         self._write_snapshot()
-                        while s.next_snapshot <= eng.t:
-                            s.next_snapshot += run.dt_snapshot
+                        s.next_snapshot = _next_time(s.next_snapshot, run.dt_snapshot, eng.t)
                     if bar is not None:
                         bar.n = min(eng.t, tlim)
                         bar.set_postfix_str(f"cycle={eng.cycle} dt={dt:.3g}", refresh=False)
@@ -305,44 +349,77 @@ class RunLoop:
                     want_ckpt = eng.t >= s.next_checkpoint or (
                         run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
                     )
-                    if eng.t >= s.next_checkpoint:
-                        while s.next_checkpoint <= eng.t:
-                            s.next_checkpoint += run.dt_checkpoint
+                    s.next_checkpoint = _next_time(s.next_checkpoint, run.dt_checkpoint, eng.t)
                     if want_ckpt and eng.t < tlim * (1 - 1e-14):
                         self.write_checkpoint()
                         last_ckpt_wall = time.perf_counter()
+                    elif now - self._last_history_wall >= run.history_wall:
+                        self._write_history()
                     if stop.signum:
                         status = "signal"
                         break
                     if run.walltime > 0 and (time.perf_counter() - start_wall) + 2 * step_wall >= run.walltime:
                         status = "walltime"
                         break
+                if status == "finished" and s.last_snapshot_time < eng.t:
+                    self._write_snapshot()
+                self.write_checkpoint()
             except SimulationError as exc:
                 self._dump_crash(exc)
+                raise
+            except OutputError as exc:
+                raise self._output_failed(exc) from None
+            except MemoryError:
+                exc = SimulationError(f"out of memory at {self._where()}")
+                self._dump_crash(exc)
+                raise exc from None
+            except BaseException:
+                with contextlib.suppress(Exception):  # keep the diagnostics of an unexpected stop
+                    self._write_history()
                 raise
             finally:
                 if bar is not None:
                     bar.close()
+                threads.restore()
         wall = time.perf_counter() - start_wall
         cycles = eng.cycle - start_cycle
-        if status == "finished":
-            if s.last_snapshot_time < eng.t:
-                self._write_snapshot()
-            self._write_history()
-        else:
-            self.write_checkpoint()
         throughput = work / wall if wall > 0 else 0.0
-        exit_code = 128 + stop.signum if status == "signal" else 0
-        return RunResult(self.rundir.path, eng, status, cycles, wall, throughput, eng.work_label, exit_code)
+        exit_code = {"signal": 128 + stop.signum, "walltime": EXIT_WALLTIME}.get(status, 0)
+        return RunResult(self.rundir.path, eng, status, cycles, wall, throughput, eng.work_label, exit_code,
+                         threads.chosen)
+
+    def _output_failed(self, exc: OutputError) -> OutputError:
+        """After a failed write: a checkpoint if one can still be written; the one-line error."""
+        try:
+            path = self.write_checkpoint()
+            saved = f"checkpoint {path.name} written"
+        except Exception:
+            saved = "no checkpoint could be written"
+        message = f"{exc} at {self._where()}; run stopped, {saved}"
+        with contextlib.suppress(Exception):
+            self.rundir.log(f"stopped: {message}")
+        return OutputError(message)
 
     def _dump_crash(self, exc: SimulationError) -> None:
+        message = str(exc)
+        if "time=" not in message:
+            exc.args = (f"{message} at {self._where()}", *exc.args[1:])
+        with contextlib.suppress(Exception):
+            self._write_history()
         try:
             arrays, attrs = self.engine.checkpoint()
         except Exception:  # the state may be too broken to serialise; the diagnostic still matters
             arrays, attrs = {}, {}
         arrays = {**{f"state/{k}": v for k, v in arrays.items()}, **{f"offending/{k}": v for k, v in exc.state.items()}}
-        self.rundir.write_crash(arrays, {**{f"engine_attr_{k}": v for k, v in attrs.items()}, **self._attrs(), "error": str(exc)})
-        self.rundir.log(f"stopped: {exc} (state dumped to {self.rundir.crash_file.name})")
+        try:
+            self.rundir.write_crash(
+                arrays, {**{f"engine_attr_{k}": v for k, v in attrs.items()}, **self._attrs(), "error": str(exc)}
+            )
+            dumped = f"state dumped to {self.rundir.crash_file.name}"
+        except OutputError as err:
+            dumped = f"no dump: {err}"
+        with contextlib.suppress(Exception):
+            self.rundir.log(f"stopped: {exc} ({dumped})")
 
 
 def config_text(cfg: Config) -> str:
@@ -353,36 +430,52 @@ def config_text(cfg: Config) -> str:
 def run_engine(
     engine: Engine,
     cfg: Config,
-    path: str | Path,
+    path: str | Path | RunDirectory,
     overwrite: bool = False,
     progress: bool | None = None,
     restart_from: tuple[dict, dict] | None = None,
 ) -> RunResult:
     """Run ``engine`` (already holding its initial state) into the run directory ``path``.
 
-    With ``restart_from=(arrays, attrs)`` of a checkpoint, the directory must already exist
-    and the run continues from that state.
+    A fresh run creates and locks the directory (refused if another process writes it or it
+    holds another run and ``overwrite`` is false). With ``restart_from=(arrays, attrs)`` of a
+    checkpoint the directory must exist; it is locked (if the caller has not already) and the
+    run continues from that state. The lock is released when the run returns or raises.
     """
-    rundir = RunDirectory(path)
+    rundir = path if isinstance(path, RunDirectory) else RunDirectory(path)
     loop = RunLoop(engine, cfg, rundir, progress)
-    if restart_from is None:
-        rundir.create(overwrite)
-        rundir.write_config(config_text(cfg))
-        rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
-        try:
-            loop.start()
-        except SimulationError as exc:  # e.g. an invalid initial state: dump it like any other
-            loop._dump_crash(exc)
-            raise
-    else:
-        loop.restore(*restart_from)
-        rundir.write_config(config_text(cfg))
-        rundir.log(f"restart at time={engine.t:.6g} cycle={engine.cycle} pid={os.getpid()}")
-    result = loop.loop()
-    label = result.work_label or "updates"
-    msg = (
-        f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.3g}s "
-        f"throughput={result.throughput:.4g} {label}/s"
-    )
-    rundir.log(msg)
-    return result
+    try:
+        if restart_from is None:
+            rundir.create(overwrite)
+            rundir.write_config(config_text(cfg))
+            rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
+            _log_takeover(rundir)
+            try:
+                loop.start()
+            except SimulationError as exc:  # e.g. an invalid initial state: dump it like any other
+                loop._dump_crash(exc)
+                raise
+        else:
+            rundir.lock()
+            loop.restore(*restart_from)
+            rundir.write_config(config_text(cfg))
+            rundir.log(f"restart at time={engine.t:.6g} cycle={engine.cycle} pid={os.getpid()}")
+            _log_takeover(rundir)
+        result = loop.loop()
+        label = result.work_label or "updates"
+        rundir.log(
+            f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.3g}s "
+            f"throughput={result.throughput:.4g} {label}/s threads={result.threads}"
+        )
+        return result
+    finally:
+        rundir.unlock()
+
+
+def _log_takeover(rundir: RunDirectory) -> None:
+    lock = rundir.lock()
+    if lock.previous and not lock.previous.startswith(f"{os.getpid()} "):
+        rundir.log(f"lock of a writer that did not finish ({lock.previous}) taken over")
+    if rundir.stale_removed:
+        rundir.log(f"removed {len(rundir.stale_removed)} temporary file(s) of a dead writer: "
+                   + ", ".join(p.name for p in rundir.stale_removed[:5]))

@@ -51,7 +51,7 @@ def test_run_writes_run_directory(tmp_path):
     # a second run into the same directory is refused without touching it
     before = sorted(p.name for p in out.rglob("*"))
     again = cli("run", "toy-oscillator", "-o", "out", cwd=tmp_path)
-    _assert_one_line_error(again, "is not empty")
+    _assert_one_line_error(again, "already holds a run")
     assert sorted(p.name for p in out.rglob("*")) == before
 
 

@@ -78,7 +78,20 @@ def test_walltime_stops_with_checkpoint(tmp_path):
     assert res2.status == "finished"
 
 
-def test_restart_without_checkpoint_is_a_user_error(tmp_path):
-    api.run("toy-oscillator", output=tmp_path / "r", set=["run.tlim=0.1"])
-    proc = cli("run", "--restart", "r", cwd=tmp_path)
+def test_finished_run_ends_with_a_checkpoint_and_restart_extends_it(tmp_path):
+    """The default run ends with a checkpoint; ``--restart --set run.tlim=T`` continues it to T, and the
+    extended run's state at T agrees with the leapfrog's exact phase to O(dt^2) like a run straight to T."""
+    api.run("toy-oscillator", output=tmp_path / "r", set=["run.tlim=0.5"])
+    assert [p.name for p in RunDirectory(tmp_path / "r").checkpoints()] == ["chk_00000.h5"]
+    again = cli("run", "--restart", "r", "--set", "run.tlim=1.0", cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    hist, attrs = read_h5(tmp_path / "r" / "history.h5")
+    assert attrs["time"] == pytest.approx(1.0, abs=1e-12) and np.all(np.diff(hist["time"]) > 0)
+    # x0(t) = cos(omega t) for the first oscillator; leapfrog phase error ~ t (omega dt)^2 / 24 = 4e-6
+    assert hist["x0"][-1] == pytest.approx(np.cos(1.0), abs=1e-5)
+    gone = tmp_path / "gone"
+    api.run("toy-oscillator", output=gone, set=["run.tlim=0.1"])
+    for f in RunDirectory(gone).checkpoints():
+        f.unlink()
+    proc = cli("run", "--restart", "gone", cwd=tmp_path)
     assert proc.returncode == 2 and "no checkpoint" in proc.stderr

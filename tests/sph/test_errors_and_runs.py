@@ -54,14 +54,15 @@ def test_unstable_time_step_stops_instead_of_continuing(tmp_path):
 
 
 def test_h_iteration_failure_via_cli(tmp_path):
-    """CLI: a smoothing-length iteration that cannot converge exits with status 3, one line on
-    stderr, and crash.h5 in the run directory."""
+    """CLI: a smoothing-length iteration that cannot converge in the initial state is bad input
+    (the parameters cannot give a valid start): exit status 2, one line on stderr naming the
+    failure, and no run directory (the state is checked before anything is written)."""
     res = cli("run", "sph-sod", "-o", "run", "--set", "problem.nx=16", "--set", "sph.h_max_iterations=1",
               "--set", "sph.h_tolerance=1e-12", cwd=tmp_path)
-    assert res.returncode == 3, res.stderr
+    assert res.returncode == 2, res.stderr
     lines = [l for l in res.stderr.splitlines() if l.strip()]
     assert len(lines) == 1 and "did not converge" in lines[0]
-    assert (tmp_path / "run" / "crash.h5").exists()
+    assert not (tmp_path / "run").exists()
 
 
 def test_bad_configuration_writes_nothing(tmp_path):

@@ -13,7 +13,7 @@ import sys
 from typing import Sequence
 
 from .._version import __version__
-from ..errors import SimulationError, UserError
+from ..errors import OutputError, SimulationError, UserError
 
 #: subcommand name -> module (imported only when that subcommand runs or help is shown).
 COMMANDS: dict[str, str] = {
@@ -66,6 +66,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return exc.exit_code
     except SimulationError as exc:
         print(f"dustygas: simulation stopped: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except OutputError as exc:
+        print(f"dustygas: output failed: {exc}", file=sys.stderr)
         return exc.exit_code
     except KeyboardInterrupt:
         print("dustygas: interrupted", file=sys.stderr)

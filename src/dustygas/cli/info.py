@@ -7,8 +7,9 @@ import importlib
 import os
 import platform
 import shutil
+from pathlib import Path
 
-HELP = "versions, numba threads and MPI availability"
+HELP = "versions, numba threads, the kernel-cache stamp and MPI availability"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -35,15 +36,14 @@ def main(args: argparse.Namespace) -> int:
     ]
     rows += [(m, _version(m)) for m in ("numpy", "scipy", "numba", "h5py", "matplotlib", "astropy", "tqdm")]
     rows.append(("numba threads", f"{numba.get_num_threads()} of {numba.config.NUMBA_NUM_THREADS} "
-                 f"(layer: {numba.config.THREADING_LAYER})"))
+                 f"(layer: {numba.config.THREADING_LAYER}); runs choose between 1 and "
+                 f"{numba.get_num_threads()} from measured step times unless --threads N"))
     if hasattr(os, "getloadavg"):
-        load = os.getloadavg()[0]
-        advice = ""
-        if numba.get_num_threads() > 1 and load >= 0.9:  # about one core busy elsewhere
-            # numba's OpenMP threads wait for each other at the end of every parallel region: a
-            # thread sharing a core with another busy process slows the whole team (CONTRIBUTING.md)
-            advice = "  (other work is running: parallel runs may be faster with --threads 1)"
-        rows.append(("load average", f"{load:.2f} (1 min){advice}"))
+        rows.append(("load average", f"{os.getloadavg()[0]:.2f} (1 min)"))
+    from .._numba_cache import source_stamp
+
+    rows.append(("kernel sources", f"{source_stamp(Path(__file__).resolve().parents[1] / '__init__.py')[:16]} "
+                 "(numba cache stamp)"))
     try:
         from mpi4py import MPI
 

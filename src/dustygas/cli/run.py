@@ -5,18 +5,24 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..errors import UserError
+from ..errors import EXIT_WALLTIME, UserError
 
 HELP = "run a registered problem (dustygas problems lists them) or restart a run"
-DESCRIPTION = """Run a registered problem into a run directory.
+DESCRIPTION = f"""Run a registered problem into a run directory.
 
   dustygas run si-linA                          small default, output in runs/si-linA
   dustygas run si-linA -o myrun --set grid.nx=128 --set run.tlim=4
   dustygas run si-linA -c params.toml           TOML file layered over the defaults
-  dustygas run --restart myrun                  continue from the newest checkpoint
+  dustygas run --restart myrun                  continue from the newest intact checkpoint
+  dustygas run --restart myrun --set run.tlim=12    extend a finished run
 
-A run writes config.toml, log.txt, history.h5, snapshots/ and checkpoints/. SIGTERM or
---walltime write a checkpoint before stopping; --restart continues bit-identically."""
+A run writes config.toml, log.txt, history.h5, snapshots/ and checkpoints/ and ends with a
+checkpoint. SIGTERM, Ctrl-C or --walltime write a checkpoint before stopping; --restart
+continues bit-identically and may change only run.* parameters. One process at a time writes
+a run directory.
+
+exit status: 0 finished; 2 bad input (nothing written); 3 stopped on an invalid state or a
+failed write; {EXIT_WALLTIME} stopped at --walltime (resubmit with --restart); 128+N signal N."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -26,16 +32,18 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("-s", "--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override one parameter (repeatable; wins over files)")
     p.add_argument("-o", "--output", metavar="DIR", help="run directory (default runs/PROBLEM)")
-    p.add_argument("--overwrite", action="store_true", help="reuse a non-empty output directory")
+    p.add_argument("--overwrite", action="store_true", help="replace the run in a non-empty output directory")
     p.add_argument("--restart", metavar="DIR", help="continue the run in DIR from its newest checkpoint")
     p.add_argument("--walltime", type=float, metavar="SECONDS",
-                   help="checkpoint and stop after this many wall-clock seconds")
-    p.add_argument("--threads", type=int, metavar="N", help="numba threads (default: all)")
+                   help=f"checkpoint and stop (exit status {EXIT_WALLTIME}) after this many wall-clock seconds")
+    p.add_argument("--threads", type=int, metavar="N",
+                   help="numba threads (default: chosen automatically from measured step times)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress output")
 
 
 def main(args: argparse.Namespace) -> int:
     from .. import api
+    from ._compile_notice import compile_notice
 
     overrides = list(args.set)
     if args.threads is not None:
@@ -43,21 +51,25 @@ def main(args: argparse.Namespace) -> int:
             raise UserError(f"--threads {args.threads}: expected a positive integer")
         overrides.append(f"run.threads={args.threads}")
     progress = False if args.quiet else None
-    if args.restart:
-        if args.problem or args.config or args.output:
-            raise UserError("--restart DIR takes no problem name, --config or --output")
-        result = api.restart(args.restart, set=overrides, walltime=args.walltime, progress=progress)
-    else:
-        if not args.problem:
-            raise UserError("run: give a problem name (see: dustygas problems) or --restart DIR")
-        result = api.run(args.problem, output=args.output, config=args.config, set=overrides,
-                         overwrite=args.overwrite, walltime=args.walltime, progress=progress)
+    with compile_notice(enabled=not args.quiet):
+        if args.restart is not None:
+            if args.problem or args.config or args.output is not None or args.overwrite:
+                raise UserError("--restart DIR takes no problem name, --config, --output or --overwrite")
+            result = api.restart(args.restart, set=overrides, walltime=args.walltime, progress=progress)
+        else:
+            if not args.problem:
+                raise UserError("run: give a problem name (see: dustygas problems) or --restart DIR")
+            result = api.run(args.problem, output=args.output, config=args.config, set=overrides,
+                             overwrite=args.overwrite, walltime=args.walltime, progress=progress)
     label = result.work_label or "updates"
     print(
         f"{result.status}: {result.path}  time={result.engine.t:.6g}  cycles={result.cycles}  "
-        f"wall={result.wall:.3g}s  throughput={result.throughput:.4g} {label}/s",
+        f"wall={result.wall:.3g}s  throughput={result.throughput:.4g} {label}/s  threads={result.threads}",
         file=sys.stderr,
     )
-    if result.status in ("walltime", "signal"):
+    if result.status == "walltime":
+        print(f"stopped at the wall-clock limit (exit status {EXIT_WALLTIME}); checkpoint written; "
+              f"continue with: dustygas run --restart {result.path}", file=sys.stderr)
+    elif result.status == "signal":
         print(f"checkpoint written; continue with: dustygas run --restart {result.path}", file=sys.stderr)
     return result.exit_code

@@ -24,10 +24,6 @@ params
     Configuration sections shared by the grid problems and :func:`engine_from_config`.
 """
 
-from ._kernel_cache import ensure_fresh_cache
-
-ensure_fresh_cache()
-
 from .engine import GridEngine, GridGeometry  # noqa: E402
 from .mesh import Mesh  # noqa: E402
 

@@ -245,9 +245,11 @@ class GridEngine:
             nx, ny, _ = self.mesh.shape
             i, j, k = self._bad % nx, (self._bad // nx) % ny, self._bad // (nx * ny)
             rho, vx, vy, vz = self.primitive()
+            cell = {"rho": rho[k, j, i], "vx": vx[k, j, i], "vy": vy[k, j, i], "vz": vz[k, j, i]}
+            bad = [f"{n}={v:.6g}" for n, v in cell.items() if not np.isfinite(v) or (n == "rho" and v <= 0)]
             raise SimulationError(
                 f"invalid gas state in cell (i={i}, j={j}, k={k}) at time={self.t:.6g} cycle={self.cycle}: "
-                f"rho={rho[k, j, i]:.6g}",
+                + ", ".join(bad or [f"{n}={v:.6g}" for n, v in cell.items()]),
                 state={"rho": rho, "vx": vx, "vy": vy, "vz": vz},
             )
         return self.cfl / self._rate

@@ -7,14 +7,18 @@ Layout::
       log.txt                human-readable log (append-only, one line per event)
       history.h5             time series of scalar diagnostics (rewritten atomically)
       snapshots/snap_NNNNN.h5
-      checkpoints/chk_NNNNN.h5   full restart state (the newest ``keep`` are kept)
+      checkpoints/chk_NNNNN.h5   full restart state with a checksum (the newest ``keep`` are kept)
       crash.h5               state dump written when a run stops on an invalid state
+      .lock                  held (flock) by the one process writing the directory
 
-Every file except the append-only log is written to a temporary name and renamed.
+Every file except the append-only log is written to a temporary name and renamed. Only the
+process holding the lock (:meth:`RunDirectory.lock`, :mod:`dustygas.io.lock`) writes; it
+removes the temporary files a killed writer left behind.
 """
 
 from __future__ import annotations
 
+import os
 import re
 import time
 from pathlib import Path
@@ -22,26 +26,69 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import UserError
-from .atomic import atomic_write_text
+from ..errors import OutputError, UserError
+from .atomic import atomic_write_text, output_error, remove_stale_temporaries
 from .hdf5 import read_h5, write_h5
+from .lock import LOCK_NAME, RunLock
 from .schema import annotate_history, annotate_snapshot
 
-__all__ = ["RunDirectory", "default_run_path"]
+__all__ = ["RunDirectory", "default_run_path", "check_output_path"]
 
 _SNAP = re.compile(r"snap_(\d{5,})\.h5$")
 _CHK = re.compile(r"chk_(\d{5,})\.h5$")
 
 
 def default_run_path(problem: str, base: str | Path = "runs") -> Path:
-    """``runs/<problem>``, or ``runs/<problem>.1``, ``.2``, ... if that already exists."""
-    base = Path(base)
-    path = base / problem
-    n = 0
-    while path.exists():
-        n += 1
-        path = base / f"{problem}.{n}"
-    return path
+    """``runs/<problem>``: a run refuses to start there if it holds another run."""
+    return Path(base) / problem
+
+
+def check_output_path(path: str | Path) -> Path:
+    """Refuse (one line) an output path that cannot become a run directory; return it.
+
+    Checked before anything is built or written: an empty name, a NUL byte, a name too long, a
+    component that is an existing file, a parent where no directory can be created.
+    """
+    text = os.fspath(path)
+    if not text.strip():
+        raise UserError("output path is empty: give a directory name (-o DIR)")
+    if "\0" in text:
+        raise UserError(f"output path {text!r} contains a NUL byte")
+    p = Path(text)
+    try:
+        _check_creatable(p)
+    except OSError as exc:
+        raise UserError(f"output path {_short(p)}: {exc.strerror}") from None
+    return p
+
+
+def _short(p: Path) -> str:
+    text = str(p)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _check_creatable(p: Path) -> None:
+    if p.exists() and not p.is_dir():
+        raise UserError(f"output path {p} exists and is not a directory")
+    ancestor = p
+    while not ancestor.exists():
+        if ancestor.parent == ancestor:
+            break
+        ancestor = ancestor.parent
+    if ancestor.exists() and not ancestor.is_dir():
+        raise UserError(f"output path {p}: {ancestor} is a file, not a directory")
+    if ancestor == p:
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise UserError(f"output directory {p} is not writable")
+        return
+    first = p  # access() trusts the permission bits; /proc or a read-only mount refuse mkdir
+    while first.parent != ancestor:
+        first = first.parent
+    try:
+        first.mkdir()
+        first.rmdir()
+    except OSError as exc:
+        raise UserError(f"output path {_short(p)}: cannot create {_short(first)} ({exc.strerror})") from None
 
 
 class RunDirectory:
@@ -55,6 +102,8 @@ class RunDirectory:
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
+        self._lock: RunLock | None = None
+        self.stale_removed: list[Path] = []  # temporary files of a dead writer, removed by lock()
 
     # ----------------------------------------------------------------- layout
     @property
@@ -86,34 +135,58 @@ class RunDirectory:
         return sorted(files, key=lambda p: int(_SNAP.search(p.name).group(1)))
 
     def checkpoints(self) -> list[Path]:
-        """Checkpoint files in index order."""
+        """Checkpoint entries in index order (damaged ones included: see :mod:`dustygas.io.checkpoint`)."""
         d = self.path / "checkpoints"
         files = [p for p in d.glob("chk_*.h5") if _CHK.search(p.name)] if d.is_dir() else []
         return sorted(files, key=lambda p: int(_CHK.search(p.name).group(1)))
 
+    # ----------------------------------------------------------------- locking
+    def lock(self) -> RunLock:
+        """Take the directory's lock (it must exist); one line naming the holder if it is taken.
+
+        Temporary files left by a dead writer are removed once the lock is held.
+        """
+        if self._lock is None or not self._lock.held:
+            self._lock = RunLock(self.path).acquire()
+            self.stale_removed = remove_stale_temporaries(self.path, self.path / "snapshots", self.path / "checkpoints")
+        return self._lock
+
+    def unlock(self, discard: bool = False) -> None:
+        """Release the lock; ``discard``: also remove the lock file if taking the lock created it."""
+        if self._lock is not None:
+            self._lock.release(discard)
+
     # ----------------------------------------------------------------- creation
     def check_new(self, overwrite: bool = False) -> None:
         """Refuse (one line) to start a fresh run in a non-empty directory."""
-        if self.path.exists() and not self.path.is_dir():
-            raise UserError(f"output path {self.path} exists and is not a directory")
-        if self.path.is_dir() and any(self.path.iterdir()) and not overwrite:
+        check_output_path(self.path)
+        if self.path.is_dir() and not overwrite and any(p.name != LOCK_NAME for p in self.path.iterdir()):
             raise UserError(
-                f"output directory {self.path} is not empty: use --overwrite, "
-                f"or continue it with --restart {self.path}"
+                f"output directory {self.path} already holds a run: continue it with --restart {self.path}, "
+                "replace it with --overwrite, or choose another with -o DIR"
             )
 
     def create(self, overwrite: bool = False) -> None:
-        """Create the directory tree (clearing old outputs if ``overwrite``)."""
+        """Create the directory, take its lock, then the tree (clearing old outputs if ``overwrite``)."""
         self.check_new(overwrite)
-        if overwrite and self.path.is_dir():
-            for sub in ("snapshots", "checkpoints"):
-                for f in (self.path / sub).glob("*.h5"):
-                    f.unlink()
-            for f in (self.config_file, self.log_file, self.history_file, self.crash_file):
-                if f.exists():
-                    f.unlink()
-        (self.path / "snapshots").mkdir(parents=True, exist_ok=True)
-        (self.path / "checkpoints").mkdir(parents=True, exist_ok=True)
+        try:
+            self.path.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UserError(f"cannot create output directory {self.path}: {exc.strerror}") from None
+        self.lock()
+        self.check_new(overwrite)  # again under the lock: another run may have started meanwhile
+        try:
+            if overwrite:
+                for sub in ("snapshots", "checkpoints"):
+                    for f in (self.path / sub).glob("*.h5"):
+                        f.unlink()
+                for f in (self.config_file, self.log_file, self.history_file, self.crash_file):
+                    f.unlink(missing_ok=True)
+            (self.path / "snapshots").mkdir(exist_ok=True)
+            (self.path / "checkpoints").mkdir(exist_ok=True)
+        except OSError as exc:
+            self.unlock()
+            raise UserError(f"cannot prepare output directory {self.path}: {exc.strerror}") from None
 
     # ----------------------------------------------------------------- writers
     def write_config(self, text: str) -> None:
@@ -121,8 +194,11 @@ class RunDirectory:
 
     def log(self, message: str) -> None:
         stamp = time.strftime("%Y-%m-%d %H:%M:%S")
-        with open(self.log_file, "a", encoding="utf-8") as fh:
-            fh.write(f"{stamp} {message}\n")
+        try:
+            with open(self.log_file, "a", encoding="utf-8") as fh:
+                fh.write(f"{stamp} {message}\n")
+        except OSError as exc:
+            raise output_error(self.log_file, exc) from None
 
     def write_snapshot(self, index: int, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any]) -> Path:
         path = self.snapshot_file(index)
@@ -135,10 +211,16 @@ class RunDirectory:
     def write_checkpoint(
         self, index: int, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], keep: int = 2
     ) -> Path:
+        """Write checkpoint ``index`` with a checksum, then delete all but the newest ``keep``."""
         path = self.checkpoint_file(index)
-        write_h5(path, arrays, attrs)
+        write_h5(path, arrays, attrs, checksum=True)
         for old in self.checkpoints()[:-keep] if keep > 0 else []:
-            old.unlink()
+            try:
+                old.unlink()
+            except IsADirectoryError:
+                pass
+            except OSError as exc:
+                raise OutputError(f"cannot remove old checkpoint {old}: {exc.strerror}") from None
         return path
 
     def write_crash(self, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any]) -> Path:

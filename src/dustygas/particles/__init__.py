@@ -24,12 +24,6 @@ The particles know the grid only through :class:`~dustygas.grid.GridGeometry` an
 interface of :class:`~dustygas.grid.GridEngine` (``stage_input``, ``advance_stage``).
 """
 
-from pathlib import Path
-
-from ..grid._kernel_cache import ensure_fresh_cache
-
-ensure_fresh_cache(Path(__file__).resolve().parent, (Path(__file__).resolve().parents[1] / "physics" / "drag.py",))
-
 from .coupling import DRAG_LAWS, ParticleGridEngine  # noqa: E402
 from .drag import DRAG_INTEGRATORS  # noqa: E402
 from .interp import KERNELS  # noqa: E402

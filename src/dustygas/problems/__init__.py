@@ -53,6 +53,19 @@ class Problem:
         """Return an engine holding the initial state for ``cfg``."""
         raise NotImplementedError
 
+    def memory_estimate(self, cfg: Config) -> int | None:
+        """Bytes the engine will need for ``cfg``, estimated before anything is allocated.
+
+        ``dustygas run`` refuses a set-up that needs more than the machine has available (one
+        line, exit 2). The default counts grid cells and particles from the ``grid`` and
+        ``particles`` sections (:func:`dustygas.preflight.grid_memory_estimate`); a problem
+        whose size is set otherwise overrides it, or returns None (then an address-space limit
+        during ``build`` still turns an impossible allocation into a one-line error).
+        """
+        from ..preflight import grid_memory_estimate
+
+        return grid_memory_estimate(cfg)
+
     def config(self, files=(), overrides=(), data: Mapping | None = None) -> Config:
         """Defaults < files < data < overrides, validated against :attr:`schema`."""
         cfg = build_config(self.schema, files, overrides, data, problem_name=self.name)

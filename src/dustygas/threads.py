@@ -1,0 +1,215 @@
+"""The default thread count: measured while the run goes on, not guessed.
+
+numba's OpenMP threads wait for each other at the end of every parallel region. When another
+process holds one of the cores, the thread sharing that core arrives late at every barrier and
+the whole team waits: a 2-thread run on a 2-core machine with one busy core is then several
+times *slower* than a 1-thread run, while on a quiet machine it is nearly twice as fast. The
+machine's load average cannot tell the two cases apart in time (it lags by a minute and counts
+our own threads), so :class:`ThreadTuner` measures instead, as FFTW's planner and GROMACS's
+PME tuning do: every kernel gives bit-identical results for any thread count, so the run can
+switch freely between steps.
+
+Protocol, for the ``candidates`` (1, half, all-but-one and all of the threads the process may
+use, without repeats):
+
+1. ``warmup`` steps at one thread (the first steps compile kernels and fill caches);
+2. a *trial*: blocks of at least ``block_steps`` steps and ``block_seconds`` of stepping per
+   candidate, in the mirrored order ``a b .. b a`` so that a load that drifts linearly during
+   the trial cancels; the step time per work unit of each candidate is the mean of its blocks;
+3. the fewest threads within ``margin`` of the fastest candidate are used until the next trial,
+   provided both halves of the mirrored trial pick the same count; if they disagree (a load
+   that changes from one block to the next) the trial is repeated with blocks twice as long, and
+   after ``max_rounds`` disagreeing rounds one thread is used;
+4. the next trial comes ``recheck_seconds`` of stepping later; the interval doubles (up to
+   ``max_recheck_seconds``) while the choice stays the same and starts again from
+   ``recheck_seconds`` when it changes. Between trials the step cost is watched in windows of
+   ``watch_seconds``: two windows in a row whose cost is off the first window after the decision
+   by more than ``drift`` (another process started or stopped) bring the next trial forward.
+
+A trial spends half its blocks on the slower choice. With two candidates and the default
+constants a trial takes about 0.4 s of stepping, of which about 0.13 s are lost when the slower
+choice is 3 times slower: 3 % of a 4 s run, 0.4 % of the first 30 s, then less as the interval
+grows; a load that changes is followed within the current interval.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = ["ThreadTuner", "ThreadControl", "thread_candidates"]
+
+
+def thread_candidates(available: int) -> list[int]:
+    """1, half, all but one and all of ``available`` threads (sorted, without repeats)."""
+    available = max(1, int(available))
+    return sorted({1, max(1, available // 2), max(1, available - 1), available})
+
+
+@dataclass
+class ThreadTuner:
+    """Chooses the number of numba threads from measured step times (see module docstring).
+
+    Call :meth:`threads_for_next_step` before each step, set that many threads, and report the
+    step's wall time and work with :meth:`record`. With one candidate it always answers it.
+    """
+
+    available: int
+    warmup: int = 3
+    block_steps: int = 1
+    block_seconds: float = 0.1
+    recheck_seconds: float = 30.0
+    max_recheck_seconds: float = 480.0
+    margin: float = 0.03
+    max_rounds: int = 3
+    drift: float = 0.3
+    watch_seconds: float = 2.0
+    candidates: list[int] = field(init=False)
+    choice: int = field(init=False)
+    decisions: list[str] = field(default_factory=list, init=False)
+
+    def __post_init__(self) -> None:
+        self.candidates = thread_candidates(self.available)
+        self.choice = 1
+        self._steps = 0
+        self._interval = self.recheck_seconds
+        self._since_trial = 0.0
+        self._plan: list[int] = []  # remaining blocks of the current trial
+        self._block = [0, 0.0, 0.0]  # steps, seconds, work of the block in progress
+        self._results: dict[int, list[float]] = {}
+        self._round = 0
+        self._expected = 0.0  # cost per work unit of the choice in the first window after a decision
+        self._watch = [0, 0.0, 0.0]  # steps, seconds, work of the current window
+        self._off = 0  # windows in a row whose cost is off the reference
+        self._all: dict[int, list[float]] = {}  # block costs of all rounds of the current trial
+
+    def threads_for_next_step(self) -> int:
+        if len(self.candidates) == 1:
+            return self.candidates[0]
+        if not self._plan and self._steps >= self.warmup and self._since_trial >= self._due():
+            self._round = 0
+            self._start_trial()
+        return self._plan[0] if self._plan else self.choice
+
+    def _due(self) -> float:
+        return 0.0 if not self.decisions else self._interval
+
+    def _block_seconds(self) -> float:
+        return self.block_seconds * 2**self._round
+
+    def _start_trial(self) -> None:
+        order = sorted(self.candidates, key=lambda n: (n != self.choice, n))  # current choice first
+        self._plan = order + order[::-1]
+        self._results = {n: [] for n in self.candidates}
+        self._block = [0, 0.0, 0.0]
+
+    def record(self, seconds: float, work: float) -> None:
+        """Report the wall time and the work units of the step just taken."""
+        self._steps += 1
+        if len(self.candidates) == 1 or self._steps <= self.warmup:
+            return
+        work = max(work, 1e-300)
+        if not self._plan:
+            self._since_trial += seconds
+            self._look(seconds, work)
+            return
+        block = self._block
+        block[0] += 1
+        block[1] += seconds
+        block[2] += work
+        if block[0] >= self.block_steps and block[1] >= self._block_seconds():
+            self._results[self._plan.pop(0)].append(block[1] / block[2])
+            self._block = [0, 0.0, 0.0]
+            if not self._plan:
+                self._decide()
+
+    def _look(self, seconds: float, work: float) -> None:
+        """Between trials: the step cost in windows of ``watch_seconds``; the first window after a
+        decision is the reference, and two windows in a row off it by more than ``drift`` (another
+        process started or stopped) bring the next trial forward to now."""
+        watch = self._watch
+        watch[0] += 1
+        watch[1] += seconds
+        watch[2] += work
+        if watch[0] < self.block_steps or watch[1] < self.watch_seconds:
+            return
+        cost = watch[1] / watch[2]
+        self._watch = [0, 0.0, 0.0]
+        if self._expected <= 0:
+            self._expected = cost
+            return
+        off = not (self._expected / (1 + self.drift) <= cost <= self._expected * (1 + self.drift))
+        self._off = self._off + 1 if off else 0
+        if self._off >= 2:
+            self._since_trial = self._interval
+
+    @staticmethod
+    def _pick(cost: dict[int, float], margin: float) -> int:
+        best = min(cost.values())
+        return min(n for n, c in cost.items() if c <= best * (1.0 + margin))
+
+    def _decide(self) -> None:
+        """Both halves of the mirrored trial must agree; else again with blocks twice as long."""
+        halves = [self._pick({n: v[i] for n, v in self._results.items()}, self.margin) for i in (0, 1)]
+        if self._round == 0:
+            self._all = {}
+        for n, v in self._results.items():
+            self._all.setdefault(n, []).extend(v)
+        if halves[0] != halves[1] and self._round + 1 < self.max_rounds:
+            self._round += 1
+            self._start_trial()
+            return
+        cost = {n: sum(v) / len(v) for n, v in self._all.items()}
+        choice = halves[0] if halves[0] == halves[1] else min(self.candidates)  # still undecided: one thread
+        if choice == self.choice and self.decisions:
+            self._interval = min(2.0 * self._interval, self.max_recheck_seconds)
+        else:
+            self._interval = self.recheck_seconds
+        self.choice = choice
+        self._expected = 0.0
+        self._off = 0
+        self._since_trial = 0.0
+        self._watch = [0, 0.0, 0.0]
+        rates = ", ".join(f"{n} thread{'s' if n > 1 else ''}: {1.0 / c:.4g}/s" for n, c in sorted(cost.items()))
+        agreed = "" if halves[0] == halves[1] else f", undecided after {self.max_rounds} rounds"
+        self.decisions.append(f"threads: {choice} ({rates}{agreed}; next check in {self._interval:.0f} s of stepping)")
+
+
+class ThreadControl:
+    """numba's thread count during a run: fixed (``requested > 0``) or tuned; :meth:`restore` puts back
+    the count found at the start (the tuner's largest candidate)."""
+
+    def __init__(self, requested: int):
+        import numba
+
+        self._numba = numba
+        self.before = numba.get_num_threads()
+        self.tuner = None
+        if requested > 0:
+            self.current = min(requested, numba.config.NUMBA_NUM_THREADS)
+            numba.set_num_threads(self.current)
+        else:
+            self.tuner = ThreadTuner(self.before)
+            self.current = self.before
+        self._reported = 0
+
+    def before_step(self) -> None:
+        if self.tuner is not None:
+            n = self.tuner.threads_for_next_step()
+            if n != self.current:
+                self._numba.set_num_threads(n)
+                self.current = n
+
+    def after_step(self, seconds: float, work: float) -> list[str]:
+        if self.tuner is None:
+            return []
+        self.tuner.record(seconds, work)
+        new = self.tuner.decisions[self._reported:]
+        self._reported = len(self.tuner.decisions)
+        return new
+
+    @property
+    def chosen(self) -> int:
+        return self.tuner.choice if self.tuner is not None else self.current
+
+    def restore(self) -> None:
+        self._numba.set_num_threads(self.before)

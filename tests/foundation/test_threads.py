@@ -1,0 +1,98 @@
+"""The automatic thread count (dustygas.threads): its choice, its cost, and bit-identical results.
+
+The tuner is driven with a synthetic machine: a step of ``work`` units takes ``cost[n] * work``
+seconds at ``n`` threads. Quiet 2-core machine: two threads 1.8x faster; one core busy
+elsewhere: two threads 3.1x slower (the 12.9 s vs 40.6 s measured for si-linA).
+"""
+
+import random
+import subprocess
+import sys
+
+import pytest
+
+from _runs import assert_runs_identical, run_outputs
+from dustygas.threads import ThreadTuner, thread_candidates
+
+from ._cli import env
+
+QUIET = {1: 1.0, 2: 1.0 / 1.8}
+BUSY = {1: 1.0, 2: 40.6 / 12.9}
+_rng = random.Random(16)
+
+
+def noisy(machine):
+    """Every step's cost scattered by a log-normal factor (sigma 0.5): a machine shared with many jobs."""
+    return lambda t: {n: c * _rng.lognormvariate(0.0, 0.5) for n, c in machine.items()}
+
+
+def _drive(tuner, cost_at, seconds):
+    """Step a tuner for ``seconds`` of simulated wall time; time spent per thread count."""
+    clock, spent = 0.0, {}
+    while clock < seconds:
+        n = tuner.threads_for_next_step()
+        dt = cost_at(clock)[n] * 0.05  # steps of 0.05 work units: 50 ms at one thread
+        tuner.record(dt, 0.05)
+        spent[n] = spent.get(n, 0.0) + dt
+        clock += dt
+    return spent
+
+
+@pytest.mark.parametrize("machine, best, scatter", [(QUIET, 2, False), (BUSY, 1, False), (QUIET, 2, True),
+                                                   (BUSY, 1, True)])
+def test_tuner_picks_the_faster_count_at_a_cost_below_two_percent(machine, best, scatter):
+    tuner = ThreadTuner(available=2)
+    spent = _drive(tuner, noisy(machine) if scatter else (lambda t: machine), 600.0)
+    assert tuner.choice == best
+    # work done in 600 s against the best fixed setting: trials cost at most 2 % (0.08-0.44 % here)
+    work = sum(s / machine[n] for n, s in spent.items())
+    assert work >= 0.98 * 600.0 / machine[best]
+
+
+def test_tuner_follows_a_load_that_changes():
+    """Quiet for 100 s, then a core is taken: within seconds the run is on one thread again."""
+    tuner = ThreadTuner(available=2)
+    _drive(tuner, lambda t: QUIET, 100.0)
+    assert tuner.choice == 2
+    spent = _drive(tuner, lambda t: BUSY, 300.0)
+    assert tuner.choice == 1
+    assert spent[2] < 8.0  # two 2-s windows off the reference bring the next trial forward
+
+
+def test_candidates():
+    assert thread_candidates(1) == [1] and thread_candidates(2) == [1, 2]
+    assert thread_candidates(16) == [1, 8, 15, 16]
+
+
+FORCED = """
+import functools, sys
+import dustygas.threads as threads
+# a trial at every step: the thread count changes between 1 and 2 all the time
+threads.ThreadTuner = functools.partial(threads.ThreadTuner, warmup=1, block_steps=1, block_seconds=0.0,
+                                        recheck_seconds=0.0, max_recheck_seconds=0.0)
+from dustygas.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def test_switching_threads_every_step_is_bit_identical_to_one_thread(tmp_path):
+    common = ["run", "si-linA", "-q", "--set", "grid.nx=16", "--set", "grid.nz=16", "--set", "run.tlim=0.03",
+              "--set", "run.dt_snapshot=0.01"]
+    e = {**env(), "NUMBA_NUM_THREADS": "2"}
+    one = subprocess.run([sys.executable, "-c", FORCED, *common, "-o", "one", "--threads", "1"], cwd=tmp_path, env=e,
+                         capture_output=True, text=True, timeout=600)
+    auto = subprocess.run([sys.executable, "-c", FORCED, *common, "-o", "auto"], cwd=tmp_path, env=e,
+                          capture_output=True, text=True, timeout=600)
+    assert one.returncode == 0 and auto.returncode == 0, (one.stderr, auto.stderr)
+    log = (tmp_path / "auto" / "log.txt").read_text()
+    assert log.count("threads: ") > 10 and "2 threads: " in log
+    assert_runs_identical(run_outputs(tmp_path / "one"), run_outputs(tmp_path / "auto"))
+
+
+def test_fixed_threads_are_not_tuned(tmp_path):
+    from dustygas import api
+
+    import _toyproblem  # noqa: F401
+
+    res = api.run("toy-oscillator", output=tmp_path / "r", set=["run.threads=1", "run.tlim=0.2"])
+    assert res.threads == 1 and "threads: " not in (tmp_path / "r" / "log.txt").read_text()
