@@ -58,7 +58,7 @@ def best_rate(fn, n: int, repeats: int = 5) -> tuple[float, float]:
 def main() -> None:
     n = 400_000
     taus, mu, kx, kz = parameters(n)
-    growth_rate(taus[:10], mu[:10], kx[:10], kz[:10])  # compile
+    growth_rate(taus=taus[:10], mu=mu[:10], kx=kx[:10], kz=kz[:10])  # compile
     load = os.getloadavg()[0]
     print(f"load average (1 min) before: {load:.2f}; cores: {os.cpu_count()}; numba max threads: "
           f"{numba.config.NUMBA_NUM_THREADS}")
@@ -69,7 +69,7 @@ def main() -> None:
     print(f"numpy.linalg.eigvals batched 8x8: {numpy_rate:,.0f} /s (anchor {NUMPY_EIGVALS_ANCHOR:,.0f} /s)")
     for threads in (1, 2):
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-        rate, cpu = best_rate(lambda: growth_rate(taus, mu, kx, kz), n, repeats=12)
+        rate, cpu = best_rate(lambda: growth_rate(taus=taus, mu=mu, kx=kx, kz=kz), n, repeats=12)
         print(f"growth_rate, {threads} thread(s): {rate:,.0f} evaluations/s ({cpu * 1e6:.2f} CPU-us each) "
               f"= {rate / numpy_rate:.1f}x numpy "
               f"(same run), {rate / NUMPY_EIGVALS_ANCHOR:.1f}x the reference anchor, "
@@ -77,10 +77,10 @@ def main() -> None:
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
     mu_g = np.logspace(-2, 2, 200)
     taus_g = np.logspace(-3, 1, 200)
-    growth_map(mu_g[:2], taus_g[:2], method="kx")  # compile
+    growth_map(mu=mu_g[:2], taus=taus_g[:2], method="kx")  # compile
     for label, kw in (("kx at Kz=1000, Pi=0.05", {}), ("kx at Kz=1000, Pi=0 (fig4.1)", {"Pi": 0.0})):
         t0 = time.perf_counter()
-        gm = growth_map(mu_g, taus_g, method="kx", kz=1000.0, kx_range=(0.1, 1e6), **kw)
+        gm = growth_map(mu=mu_g, taus=taus_g, method="kx", kz=1000.0, kx_range=(0.1, 1e6), **kw)
         dt = time.perf_counter() - t0
         print(f"200x200 map ({label}), {numba.get_num_threads()} threads: {dt:.2f} s "
               f"(target < {TARGET_MAP_S:g} s; max growth {np.nanmax(gm.growth):.4f})")

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from dustygas.linear import StreamingParams, operator_matrix
+from dustygas.linear.sweep_run import sweep
 
 from foundation._cli import cli
 
@@ -44,11 +45,14 @@ def test_mode_json_contract(tmp_path):
     assert all(len(v) == 2 for v in out["eigenvector"].values())
 
 
-def test_mode_json_two_species_keys(tmp_path):
-    proc = cli("linear", "mode", "--taus", "0.1", "1", "--eps", "1", "0.5", "--kx", "30", "--kz", "30", "--json",
+def test_mode_json_two_species_is_bkp19_linC(tmp_path):
+    """Benítez-Llambay, Krapp & Pessah (2019) Table 4 linC: s = 0.3027262829, Re ω = 0.3242790653."""
+    proc = cli("linear", "mode", "--taus", "0.0425", "0.1", "--mu", "1", "0.5", "--kx", "50", "--kz", "50", "--json",
                cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
-    ev = json.loads(proc.stdout)["eigenvector"]
+    out = json.loads(proc.stdout)
+    assert abs(out["growth_rate"] - 0.3027262829) <= 5e-11 and abs(out["frequency"] - 0.3242790653) <= 5e-11
+    ev = out["eigenvector"]
     assert {"drho_p_0", "wz_0", "drho_p_1", "wx_1", "drho_g"} <= set(ev)
     assert ev["drho_p_0"] == [1.0, 0.0]
 
@@ -60,11 +64,12 @@ def test_mode_help_documents_json_keys(tmp_path):
 
 
 @pytest.mark.parametrize("args, fragment", [
-    (["--taus", "-0.1", "--eps", "3", "--kx", "30", "--kz", "30"], "stopping times must be > 0"),
-    (["--taus", "0.1", "--eps", "-3", "--kx", "30", "--kz", "30"], "dust-to-gas ratios must be >= 0"),
-    (["--taus", "0.1", "--eps", "3", "--kx", "0", "--kz", "0"], "k = 0"),
-    (["--taus", "0.1", "--eps", "3", "--kx", "30", "--kz", "30", "--drag", "stokes"], "unknown drag"),
-    (["--taus", "0.1", "--eps", "3", "--kx", "30", "--kz", "30", "--vz", "fast"], "--vz"),
+    (["--taus", "-0.1", "--mu", "3", "--kx", "30", "--kz", "30"], "stopping times must be > 0"),
+    (["--taus", "0.1", "--mu", "-3", "--kx", "30", "--kz", "30"], "dust-to-gas ratios must be >= 0"),
+    (["--taus", "0.1", "--mu", "3", "--kx", "0", "--kz", "0"], "k = 0"),
+    (["--taus", "0.1", "--mu", "3", "--kx", "30", "--kz", "30", "--drag", "stokes"], "unknown drag"),
+    (["--taus", "0.1", "--mu", "3", "--kx", "30", "--kz", "30", "--vz", "fast"], "--vz"),
+    (["--taus", "0.1", "--kx", "30", "--kz", "30"], "--mu is required"),
 ])
 def test_mode_bad_input_is_one_line_exit_2(tmp_path, args, fragment):
     _one_line_error(cli("linear", "mode", *args, cwd=tmp_path), fragment)
@@ -86,6 +91,7 @@ def test_map_writes_hdf5_json_png(tmp_path):
     for i, j in [(0, 0), (2, 3), (4, 5), (5, 1)]:
         assert lapack(i, j, kx[i, j]) == pytest.approx(g[i, j], rel=1e-9, abs=1e-12)
         assert max(lapack(i, j, kx[i, j] * 0.99), lapack(i, j, kx[i, j] * 1.01)) <= g[i, j] * (1 + 1e-9)
+    assert mu[0] == pytest.approx(0.01) and mu[-1] == pytest.approx(10.0) and taus[-1] == pytest.approx(3.0)
     assert (tmp_path / "out" / "growth_map.png").stat().st_size > 10_000
     assert json.loads((tmp_path / "out" / "growth_map.json").read_text())["attrs"]["kz"] == 30.0
     _one_line_error(cli("linear", "map", "--method", "spiral", "-o", "o2", cwd=tmp_path), "method")
@@ -93,17 +99,20 @@ def test_map_writes_hdf5_json_png(tmp_path):
 
 
 def test_shear_writes_csv_png(tmp_path):
-    proc = cli("linear", "shear", "--taus", "0.1", "--eps", "3", "--kx", "-30", "--ky", "5", "--kz", "30",
+    proc = cli("linear", "shear", "--taus", "0.1", "--mu", "3", "--kx", "-30", "--ky", "5", "--kz", "30",
                "-o", "sw", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     text = (tmp_path / "sw" / "shearing_wave.csv").read_text().splitlines()
     assert text[0].startswith("# shearing wave")
     names = [ln for ln in text if not ln.startswith("#")][0].split(",")
     assert names[:2] == ["t", "kx"] and "abs_drho_p_0" in names
+    # the scipy (LSODA) swing against the compiled Dormand-Prince integration of the sweep: 1e-6
     amp = float(proc.stdout.split()[2])
     rows = [ln.split(",") for ln in text if not ln.startswith("#")][1:]
     drho_p = np.array([float(r[names.index("abs_drho_p_0")]) for r in rows])
     assert amp == pytest.approx(drho_p[-1] / drho_p[0], rel=1e-7)  # the printed number is the file's
+    r = sweep(mu=[3.0], taus=[0.1], kx=[-30.0], ky=[5.0], kz=30.0, t_end="swing", rtol=1e-9)
+    assert amp == pytest.approx(r["dust_final"].item(), rel=1e-6)
     # k_y = 0: no shear of the wave, the linA eigenmode grows at Benitez-Llambay et al. (2019)'s s = 0.4190091323
     flat = cli("linear", "shear", "--taus", "0.1", "--eps", "3", "--kx", "30", "--ky", "0", "--kz", "30",
                "--t-end", "3", "-o", "sw0", cwd=tmp_path)

@@ -75,7 +75,7 @@ def test_growth_rate_kernel_equals_lapack_on_operators():
     """The vectorised fast path (build + QR in one kernel) against LAPACK on the same points."""
     ps = random_operators(600, seed=4)
     ps = [p for p in ps if not p.incompressible]
-    s = growth_rate([p.taus for p in ps], [p.mu for p in ps], [p.kx for p in ps], [p.kz for p in ps],
+    s = growth_rate(taus=[p.taus for p in ps], mu=[p.mu for p in ps], kx=[p.kx for p in ps], kz=[p.kz for p in ps],
                     Pi=[p.Pi for p in ps], drag="consistent",
                     vz=[p.vz_array[0] for p in ps])
     for si, p in zip(s, ps):

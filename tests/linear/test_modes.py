@@ -96,7 +96,7 @@ def test_splitting_a_species_in_two_identical_halves():
     assert abs(m1.omega - m2.omega) <= 1e-11
     assert np.allclose(m2.eigenvector["drho_p"], 1.0, atol=1e-11)
     assert np.allclose(m2.eigenvector["wx"], m1.eigenvector["wx"], atol=1e-11)
-    s = growth_rate([0.1, 0.1], [1.5, 1.5], 30.0, 30.0, vz=-0.4, species_axis=0)
+    s = growth_rate(taus=[0.1, 0.1], mu=[1.5, 1.5], kx=30.0, kz=30.0, vz=-0.4, species_axis=0)
     assert abs(float(s) - m1.growth_rate) <= 1e-11
 
 

@@ -33,13 +33,13 @@ C2 = (1 / 0.05) ** 2  # c_s² at Π = 0.05
 
 def _k(theta_deg, sign, K):
     t = math.radians(theta_deg)
-    return K * math.sin(t), sign * K * math.cos(t)
+    return {"kx": K * math.sin(t), "kz": sign * K * math.cos(t)}
 
 
 def _peak(taus, mu, theta_deg, sign, K0, span=2e-3, n=2001, **kw):
     """Largest growth of the operator on |K| ∈ K0 (1 ± span) along a fixed direction."""
     K = K0 * np.linspace(1 - span, 1 + span, n)
-    s = growth_rate(taus, mu, *_k(theta_deg, sign, K), **kw)
+    s = growth_rate(taus=taus, mu=mu, **_k(theta_deg, sign, K), **kw)
     i = int(np.argmax(s))
     assert 0 < i < n - 1, "maximum on the edge of the scanned window"
     return K[i], s[i]
@@ -68,7 +68,7 @@ def test_resonance_with_radial_drift_at_thesis_parameters(taus, drag):
     O(√μ) next order: 1e-3 at τ_s = 1, 3e-6 at τ_s = 1e-3)."""
     mu = 1e-6
     for sign in (1, -1):
-        K_res, s_res = resonant_growth(taus, mu, 30.0, sign, drag=drag)
+        K_res, s_res = resonant_growth(taus=taus, mu=mu, theta_deg=30.0, kz_sign=sign, drag=drag)
         K, s = _peak(taus, mu, 30.0, sign, K_res, vz="settling", drag=drag)
         assert K == pytest.approx(K_res, rel=1e-5)
         assert s == pytest.approx(s_res, rel=1.2e-3)
@@ -79,9 +79,9 @@ def test_incompressible_resonance_closed_form():
     for taus in (0.1, 0.01):
         vz = -20.0 * taus / (2 * taus**2 + 1)
         for sign in (1, -1):
-            K_res, s_res = resonant_growth(taus, 1e-6, 30.0, sign, Pi=0.0, vz=vz)
+            K_res, s_res = resonant_growth(taus=taus, mu=1e-6, theta_deg=30.0, kz_sign=sign, Pi=0.0, vz=vz)
             assert K_res == pytest.approx(abs(math.cos(math.radians(30)) / (_unit(sign) @ relative_drift(
-                taus, 1e-6, 0.0, vz))), rel=1e-14)
+                taus=taus, mu=1e-6, Pi=0.0, vz=vz))), rel=1e-14)
             K, s = _peak(taus, 1e-6, 30.0, sign, K_res, Pi=0.0, vz=vz)
             assert s == pytest.approx(s_res, rel=2e-4)
 
@@ -99,10 +99,10 @@ def test_fig4_3_peaks_are_the_resonance():
     sn, cs = math.sin(math.radians(30)), math.cos(math.radians(30))
     for mu, tol in ((0.01, 3e-3), (0.1, 1e-2)):
         for taus in (0.01, 0.001):
-            K_res, s_res = resonant_growth(taus, mu, 30.0, -1)
+            K_res, s_res = resonant_growth(taus=taus, mu=mu, theta_deg=30.0, kz_sign=-1)
             K, s = _peak(taus, mu, 30.0, -1, 1.07 * K_res, span=0.1, vz="settling")
             assert s == pytest.approx(s_res, rel=tol)
-            w = relative_drift(taus, mu)
+            w = relative_drift(taus=taus, mu=mu)
             x = w[0] / w[2]
             factor = math.sqrt((sn * cs + x * cs**2) / (sn * cs - x * sn**2))
             assert s == pytest.approx(math.sqrt(mu / 2) * sn * factor, rel=1e-2)
@@ -119,8 +119,8 @@ def test_large_k_plateau_matches_its_asymptote(drag):
                 continue  # no δρ_g: the drag linearisations coincide
             vz = -20.0 * taus / (2 * taus**2 + 1)
             for sign in (1, -1):
-                s_inf = large_k_growth(taus, mu, 30.0, sign, Pi=Pi, vz=vz, drag=drag)
-                s = float(growth_rate(taus, mu, *_k(30.0, sign, K), Pi=Pi, vz=vz, drag=drag))
+                s_inf = large_k_growth(taus=taus, mu=mu, theta_deg=30.0, kz_sign=sign, Pi=Pi, vz=vz, drag=drag)
+                s = float(growth_rate(taus=taus, mu=mu, **_k(30.0, sign, K), Pi=Pi, vz=vz, drag=drag))
                 assert s == pytest.approx(s_inf, rel=1e-3), (taus, Pi, sign)
 
 
@@ -130,16 +130,16 @@ def test_plateau_sign_at_thesis_parameters():
     s_∞(incompressible) (to 1e-12: the same formula, two forms)."""
     for mu in (0.1, 0.01):
         for taus in (1.0, 0.1, 0.01, 0.001):
-            fixed = max(float(growth_rate(taus, mu, *_k(30.0, sg, 1e4), vz="settling")) for sg in (1, -1))
-            ep = max(float(growth_rate(taus, mu, *_k(30.0, sg, 1e4), vz="settling", drag="epstein"))
+            fixed = max(float(growth_rate(taus=taus, mu=mu, **_k(30.0, sg, 1e4), vz="settling")) for sg in (1, -1))
+            ep = max(float(growth_rate(taus=taus, mu=mu, **_k(30.0, sg, 1e4), vz="settling", drag="epstein"))
                      for sg in (1, -1))
             assert (fixed > 0) == (taus == 1.0)
             assert ep > 0
             for sg in (1, -1):
-                W = _unit(sg) @ relative_drift(taus, mu)
-                vz = relative_drift(taus, mu)[2]
-                inc = large_k_growth(taus, mu, 30.0, sg, Pi=0.0, vz=vz)
-                assert large_k_growth(taus, mu, 30.0, sg, drag="epstein") == pytest.approx(
+                W = _unit(sg) @ relative_drift(taus=taus, mu=mu)
+                vz = relative_drift(taus=taus, mu=mu)[2]
+                inc = large_k_growth(taus=taus, mu=mu, theta_deg=30.0, kz_sign=sg, Pi=0.0, vz=vz)
+                assert large_k_growth(taus=taus, mu=mu, theta_deg=30.0, kz_sign=sg, drag="epstein") == pytest.approx(
                     inc * C2 / (C2 - W * W), rel=1e-12)
 
 
@@ -148,7 +148,7 @@ def test_thesis_plateau_value_needs_a_steeper_angle():
     not at θ_k = 30° with fixed t_s (0.0145) or Epstein drag (0.0222), but at θ_k = 40° with
     fixed t_s (0.0285), where every Fig 4.3 curve keeps a positive plateau."""
     def tail(taus, mu, theta_deg, drag="consistent"):
-        return max(float(growth_rate(taus, mu, *_k(theta_deg, sg, 1e4), vz="settling", drag=drag)) for sg in (1, -1))
+        return max(float(growth_rate(taus=taus, mu=mu, **_k(theta_deg, sg, 1e4), vz="settling", drag=drag)) for sg in (1, -1))
 
     assert abs(tail(1.0, 0.1, 30.0) - 0.03) > 0.005
     assert abs(tail(1.0, 0.1, 30.0, "epstein") - 0.03) > 0.005
@@ -163,21 +163,21 @@ def test_high_k_branch_grows_as_mu_one_third():
     for taus in (0.01, 0.001):
         s = {}
         for mu, K in ((1e-2, 1e5), (1e-2, 1e6), (1e-3, 1e6)):
-            th, sign = perpendicular_direction(taus, mu)
+            th, sign = perpendicular_direction(taus=taus, mu=mu)
             assert sign == -1 and 84.0 < th < 85.0
-            assert _unit(sign, th) @ relative_drift(taus, mu) == pytest.approx(0.0, abs=1e-14)
-            s[mu, K] = float(growth_rate(taus, mu, *_k(th, sign, K), vz="settling"))
-            assert s[mu, K] == pytest.approx(float(high_k_growth(taus, mu, K)), rel=1e-2)
+            assert _unit(sign, th) @ relative_drift(taus=taus, mu=mu) == pytest.approx(0.0, abs=1e-14)
+            s[mu, K] = float(growth_rate(taus=taus, mu=mu, **_k(th, sign, K), vz="settling"))
+            assert s[mu, K] == pytest.approx(float(high_k_growth(taus=taus, mu=mu, K=K)), rel=1e-2)
         assert math.log10(s[1e-2, 1e6] / s[1e-3, 1e6]) == pytest.approx(1 / 3, rel=1e-2)
         assert math.log10(s[1e-2, 1e6] / s[1e-2, 1e5]) == pytest.approx(1 / 3, rel=1e-2)
 
 
 def test_bad_input_is_one_line_user_error():
     with pytest.raises(UserError, match="taus"):
-        resonant_growth(-1.0, 0.1)
+        resonant_growth(taus=-1.0, mu=0.1)
     with pytest.raises(UserError, match="theta_deg"):
-        large_k_growth(0.1, 0.1, 90.0)
+        large_k_growth(taus=0.1, mu=0.1, theta_deg=90.0)
     with pytest.raises(UserError, match="Pi > 0"):
-        relative_drift(0.1, 0.1, Pi=0.0)
+        relative_drift(taus=0.1, mu=0.1, Pi=0.0)
     with pytest.raises(UserError, match="kz_sign"):
-        resonant_growth(0.1, 0.1, 30.0, 0)
+        resonant_growth(taus=0.1, mu=0.1, theta_deg=30.0, kz_sign=0)

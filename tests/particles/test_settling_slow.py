@@ -1,11 +1,13 @@
 """Settling-enhanced streaming instability in the particle-gas engine (thesis Fig 4.6).
 
-``dustygas reproduce fig4.6`` runs ``si-settling`` at four points of thesis Fig 4.3 (θ_k = 30°,
+``dustygas reproduce fig4.6`` runs ``si-settling`` at five points of thesis Fig 4.3 (θ_k = 30°,
 the faster sign K_z < 0, Π = 0.05, the vertical drift of eq. 4.19 held by constant forces,
-fixed t_s), 32², one particle per cell, and measures their growth rates: each must lie within
-5 % of the linear theory of exactly that background (LAPACK eigenvalues of the operator,
-computed here independently of the figure; measured -0.93 %, -0.99 %, -1.16 %, -1.01 %), with the
-eight fields agreeing within 1 % (measured at most 0.11 %), and the figure must be written.
+fixed t_s), one particle per cell, and measures their growth rates: there is a cross at each of
+τ_s = 1, 0.1 and 0.01 (not yet at 0.001: see :mod:`dustygas.reproduce.fig4_6`), and each must
+lie within 5 % of the linear theory of exactly that background (LAPACK eigenvalues of the operator, computed here independently of the figure), with
+the eight fields agreeing within 1 %, and the figure must be written. Measured (32², the small-grain
+boxes as noted): -0.93 %, -0.99 %, -1.16 %, -1.01 % at τ_s = 1 and 0.1; τ_s = 0.01, μ = 0.1, K = 6
+at 32² to t = 20: -1.13 % (fields within 0.61 %; 16² gives -4.2 % with the fields 1.5 % apart).
 """
 
 import csv
@@ -18,7 +20,7 @@ from dustygas.physics import steady_settling_velocity
 
 
 @pytest.mark.slow
-def test_fig4_6_settling_growth_within_five_percent_at_four_points(tmp_path):
+def test_fig4_6_settling_growth_within_five_percent_at_every_stopping_time(tmp_path):
     from dustygas.reproduce import get_figure
 
     paths = get_figure("fig4.6").function(tmp_path, quick=True)
@@ -26,7 +28,7 @@ def test_fig4_6_settling_growth_within_five_percent_at_four_points(tmp_path):
     assert all(p.stat().st_size > 1000 for p in paths[:2])
     with open(tmp_path / "fig4_6_points.csv") as fh:
         rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
-    assert len(rows) == 4
+    assert sorted({float(r["taus"]) for r in rows}) == [0.01, 0.1, 1.0]
     for r in rows:
         taus, mu, k = float(r["taus"]), float(r["mu"]), float(r["K"])
         theory = _lapack_growth(taus, mu, k)

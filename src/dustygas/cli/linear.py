@@ -10,18 +10,20 @@ from pathlib import Path
 
 from ..errors import UserError
 
-HELP = "linear streaming-instability theory: eigenmodes, growth-rate maps, shearing waves"
+HELP = "linear streaming-instability theory: eigenmodes, growth-rate maps, shearing waves and their sweeps"
 DESCRIPTION = """Linear theory of the streaming instability (thesis §4.1, §4.6).
 
-  dustygas linear mode --taus 0.1 --eps 3 --kx 30 --kz 30 --drag yj07     YJ07 linA
-  dustygas linear mode --taus 0.1 1 --eps 1 0.5 --kx 30 --kz 30 --json    two dust species
+  dustygas linear mode --taus 0.1 --mu 3 --kx 30 --kz 30 --drag yj07      YJ07 linA
+  dustygas linear mode --taus 0.0425 0.1 --mu 1 0.5 --kx 50 --kz 50       two species (BKP19 linC)
   dustygas linear map -o out --n 60                                        YG05-style map
-  dustygas linear shear --taus 0.1 --eps 3 --kx -30 --ky 1 --kz 30 -o out  one swing
+  dustygas linear shear --taus 0.1 --mu 3 --kx -30 --ky 1 --kz 30 -o out   one swing
+  dustygas linear sweep --mu 0.1 1 --taus 0.1 1 --kx -100 -1 --ky 1 100 -o out   (mu, tau_s, kx, ky) sweep
+  dustygas linear angle runs/si3d --sweep out/sweep.h5                     theta_k(t) of a run vs the sweep
 
 Conventions: x radial, y azimuthal, z vertical, Omega = 1, shear -(3/2) x y_hat;
 perturbations ~ exp(i k.x - i omega t), growth rate = Im omega. Velocities in eta v_K,
-wavenumbers K = k eta r, tau_s = Omega t_s, eps = mu = rho_p0/rho_g0 (--mu is a synonym of
---eps), Pi = eta v_K / c_s (0: incompressible limit)."""
+wavenumbers K = k eta r, tau_s = Omega t_s, mu = rho_p0/rho_g0 the dust-to-gas ratio (YJ07's
+epsilon; --eps is an alias of --mu), Pi = eta v_K / c_s (0: incompressible limit)."""
 
 MODE_EPILOG = """JSON output (--json): an object with
   growth_rate   Im omega (units of Omega)
@@ -43,8 +45,8 @@ def _species(values, name):
 
 def _common(p: argparse.ArgumentParser, ky: bool = False) -> None:
     p.add_argument("--taus", type=float, nargs="+", metavar="TAU", help="stopping time(s) tau_s = Omega t_s (> 0)")
-    p.add_argument("--eps", "--mu", dest="eps", type=float, nargs="+", metavar="EPS",
-                   help="dust-to-gas ratio(s) rho_p/rho_g (YJ07's epsilon; --mu is a synonym)")
+    p.add_argument("--mu", "--eps", dest="mu", type=float, nargs="+", metavar="MU",
+                   help="dust-to-gas ratio(s) mu = rho_p/rho_g, one per species (YJ07's epsilon; --eps is an alias)")
     p.add_argument("--drag", default="consistent", metavar="NAME",
                    help="drag linearisation: consistent (default), yj07, epstein")
     p.add_argument("--pi", type=float, default=0.05, metavar="PI", help="Pi = eta v_K/c_s (default 0.05; 0: incompressible)")
@@ -94,6 +96,18 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s.add_argument("--method", default="LSODA", help="solve_ivp method (LSODA, BDF, Radau, RK45, DOP853)")
     s.add_argument("-o", "--output", default="linear_shear", metavar="DIR", help="output directory")
 
+    from ._linear_sweep import SWEEP_DESCRIPTION, add_sweep_arguments
+
+    w = sub.add_parser("sweep", help="shearing-wave amplification over a (mu, tau_s, kx0, ky) grid; HDF5 + PNG",
+                       description=SWEEP_DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_sweep_arguments(w)
+
+    from ._linear_angle import ANGLE_DESCRIPTION, add_angle_arguments
+
+    a = sub.add_parser("angle", help="theta_k(t) of a run's dust surface density next to a sweep's prediction",
+                       description=ANGLE_DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_angle_arguments(a)
+
 
 def _vz(text: str):
     if text == "settling":
@@ -107,7 +121,7 @@ def _vz(text: str):
 def _params(args, **k):
     from ..linear import StreamingParams
 
-    return StreamingParams(taus=_species(args.taus, "taus"), mu=_species(args.eps, "eps"), Pi=args.pi,
+    return StreamingParams(taus=_species(args.taus, "taus"), mu=_species(args.mu, "mu"), Pi=args.pi,
                            drag=args.drag, **k)
 
 
@@ -167,7 +181,7 @@ def _map(args) -> int:
             raise UserError(f"{name} {lo:g} {hi:g}: expected 0 < MIN < MAX")
     mu = np.logspace(math.log10(args.mu_range[0]), math.log10(args.mu_range[1]), args.n)
     taus = np.logspace(math.log10(args.taus_range[0]), math.log10(args.taus_range[1]), args.n)
-    gm = growth_map(mu, taus, method=args.method, kz=args.kz, kx_range=args.kx_range, kz_range=args.kz_range,
+    gm = growth_map(mu=mu, taus=taus, method=args.method, kz=args.kz, kx_range=args.kx_range, kz_range=args.kz_range,
                     k_range=args.k_range, theta_deg=args.theta, Pi=args.pi, drag=args.drag, vz=_vz(args.vz),
                     mirror=args.mirror)
     out = Path(args.output)
@@ -234,4 +248,12 @@ def main(args: argparse.Namespace) -> int:
         return _map(args)
     if cmd == "shear":
         return _shear(args)
-    raise UserError("linear: choose a subcommand: mode, map or shear (see dustygas linear --help)")
+    if cmd == "sweep":
+        from ._linear_sweep import main as sweep_main
+
+        return sweep_main(args)
+    if cmd == "angle":
+        from ._linear_angle import main as angle_main
+
+        return angle_main(args)
+    raise UserError("linear: choose a subcommand: mode, map, shear, sweep or angle (see dustygas linear --help)")

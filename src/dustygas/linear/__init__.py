@@ -24,14 +24,21 @@ Public API
 >>> m = fastest_mode(StreamingParams(taus=0.1, mu=3.0, kx=30, kz=30, drag="yj07"))   # YJ07 linA
 >>> round(m.growth_rate, 7), round(m.frequency, 7)
 (0.4190204, 0.3480127)
->>> float(growth_rate(0.1, 3.0, 30.0, 30.0)).__round__(10)                  # consistent drag
+>>> float(growth_rate(taus=0.1, mu=3.0, kx=30.0, kz=30.0)).__round__(10)      # consistent drag
 0.4190091323
+
+Array-like physical parameters are keyword-only everywhere (``growth_rate(taus=..., mu=...)``,
+``growth_map(mu=..., taus=...)``, ``sweep(mu=..., taus=..., kx=..., ky=...)``): a swap cannot run.
 
 Modules: :mod:`~dustygas.linear.operator` (the equations), :mod:`~dustygas.linear.modes`
 (eigenmodes, growth rates), :mod:`~dustygas.linear.eigensolver` (compiled QR),
 :mod:`~dustygas.linear.maps` (growth-rate maps), :mod:`~dustygas.linear.resonance` (analytic
 growth rates with a settling drift: the SH18 resonance, the large-k plateau, the (μk)^{1/3}
-branch), :mod:`~dustygas.linear.shearing_wave` (non-axisymmetric shearing waves).
+branch), :mod:`~dustygas.linear.polydisperse` (size distributions as N species),
+:mod:`~dustygas.linear.shearing_wave` (one non-axisymmetric shearing wave, scipy),
+:mod:`~dustygas.linear.sweep`, :mod:`~dustygas.linear.sweep_kernel`,
+:mod:`~dustygas.linear.sweep_run` (compiled shearing-wave sweeps over (μ, τ_s, k_x0, k_y),
+preferred wavevectors; thesis §4.6.2).
 """
 
 from .modes import Eigenmodes, Mode, eigenmodes, fastest_mode, growth_rate

@@ -202,9 +202,9 @@ def _check_range(name: str, rng) -> tuple[float, float]:
 
 
 def growth_map(
+    *,
     mu: ArrayLike,
     taus: ArrayLike,
-    *,
     method: str = "kx",
     kz: float = 1000.0,
     kx_range: tuple[float, float] = (1.0, 1e5),
@@ -223,7 +223,8 @@ def growth_map(
     Parameters
     ----------
     mu, taus
-        1D grids of dust-to-gas ratio and stopping time.
+        1D grids of dust-to-gas ratio and stopping time (keyword-only, like every
+        array-like parameter of :mod:`dustygas.linear`).
     method
         ``"kx"``: maximise over k_x in ``kx_range`` at fixed ``kz`` (YG05, thesis Fig 4.1);
         ``"box"``: maximise over (k_x, k_z) in ``kx_range`` × ``kz_range``;
@@ -243,10 +244,10 @@ def growth_map(
     linA's τ_s and μ at the linA k_z: the fastest k_x is 43.1/(ηr), inside the range; in a
     2D box the maximum sits on the k_z edge (it keeps growing with k):
 
-    >>> m = growth_map([3.0], [0.1], method="kx", kz=30.0, kx_range=(1, 1e3))
+    >>> m = growth_map(mu=[3.0], taus=[0.1], method="kx", kz=30.0, kx_range=(1, 1e3))
     >>> round(float(m.growth[0, 0]), 4), round(float(m.kx[0, 0]), 1), bool(m.at_edge[0, 0])
     (0.4496, 43.1, False)
-    >>> bool(growth_map([3.0], [0.1], method="box", kx_range=(1, 100), kz_range=(1, 100)).at_edge[0, 0])
+    >>> bool(growth_map(mu=[3.0], taus=[0.1], method="box", kx_range=(1, 100), kz_range=(1, 100)).at_edge[0, 0])
     True
     """
     mode = _MODES.get(method)
@@ -318,10 +319,10 @@ def growth_map(
 
 
 def growth_vs_k(
+    *,
     taus: ArrayLike,
     mu: ArrayLike,
     k: ArrayLike,
-    *,
     theta_deg: float = 30.0,
     mirror: bool = False,
     Pi: float = 0.05,
@@ -337,13 +338,13 @@ def growth_vs_k(
     k = np.asarray(k, dtype=np.float64)
     th = math.radians(theta_deg)
     kx, kz = k * math.sin(th), k * math.cos(th)
-    s = growth_rate(taus, mu, kx, kz, Pi=Pi, drag=drag, vz=vz)
+    s = growth_rate(taus=taus, mu=mu, kx=kx, kz=kz, Pi=Pi, drag=drag, vz=vz)
     if mirror:
-        s = np.maximum(s, growth_rate(taus, mu, kx, -kz, Pi=Pi, drag=drag, vz=vz))
+        s = np.maximum(s, growth_rate(taus=taus, mu=mu, kx=kx, kz=-kz, Pi=Pi, drag=drag, vz=vz))
     return s
 
 
-def settling_ratio(growth: ArrayLike, taus: ArrayLike) -> np.ndarray:
+def settling_ratio(*, growth: ArrayLike, taus: ArrayLike) -> np.ndarray:
     """t_growth/t_settle = (Ω/s) τ_s/(2τ_s² + 1) (thesis eq. 4.20); < 1: growth beats settling.
 
     Non-positive growth rates give ``inf`` (the mode never outgrows settling).

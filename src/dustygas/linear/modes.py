@@ -198,11 +198,11 @@ def _species_arrays(taus, mu, vz, Pi, species_axis):
 
 
 def growth_rate(
+    *,
     taus: ArrayLike,
     mu: ArrayLike,
     kx: ArrayLike,
     kz: ArrayLike,
-    *,
     ky: ArrayLike = 0.0,
     Pi: ArrayLike = 0.05,
     drag: str = "consistent",
@@ -212,7 +212,8 @@ def growth_rate(
 ):
     """Growth rate s = max Im ω of the fastest mode, vectorised over broadcast arrays.
 
-    Parameters are those of :class:`StreamingParams`; all broadcast against each other. With
+    Parameters are those of :class:`StreamingParams`, all by keyword (two array-like physical
+    parameters must not be swappable by position); all broadcast against each other. With
     ``species_axis`` set, that axis of ``taus``, ``mu`` (and ``vz``) runs over dust species
     and is reduced away. The eigenvalues come from the compiled Hessenberg-QR kernel
     (:mod:`dustygas.linear.eigensolver`), parallel over points; a point where QR does not
@@ -225,7 +226,7 @@ def growth_rate(
 
     Examples
     --------
-    >>> s = growth_rate(0.1, [3.0, 0.2], [30.0, 6.0], [30.0, 6.0], drag="yj07")
+    >>> s = growth_rate(taus=0.1, mu=[3.0, 0.2], kx=[30.0, 6.0], kz=[30.0, 6.0], drag="yj07")
     >>> [f"{v:.7f}" for v in s]
     ['0.4190204', '0.0154764']
     """

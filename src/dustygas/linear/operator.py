@@ -113,9 +113,11 @@ def _as_tuple(value, name: str) -> tuple[float, ...]:
     return tuple(float(v) for v in arr)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class StreamingParams:
     """Parameters of one linear streaming-instability problem.
+
+    Every field is keyword-only (``taus`` and ``mu`` are both array-like: a swap must not run).
 
     Parameters
     ----------

@@ -112,10 +112,10 @@ def _check(taus: float, mu: float, Pi: float, theta_deg: float, kz_sign: int) ->
         raise UserError(f"kz_sign = {kz_sign!r}: must be +1 or -1")
 
 
-def relative_drift(taus: float, mu: float, Pi: float = 0.05, vz: Union[float, str] = "settling") -> np.ndarray:
+def relative_drift(*, taus: float, mu: float, Pi: float = 0.05, vz: Union[float, str] = "settling") -> np.ndarray:
     """Dust drift through the gas w = V − U = (w_x, w_y, w_z) in ηv_K (thesis eqs. 4.8, 4.19).
 
-    >>> [round(float(x), 6) for x in relative_drift(1.0, 0.1)]
+    >>> [round(float(x), 6) for x in relative_drift(taus=1.0, mu=0.1)]
     [-0.995475, 0.452489, -6.666667]
     """
     eq = nsh_velocities_multi([taus], [mu])
@@ -158,11 +158,11 @@ def _gas_matrix(omega: complex, k: np.ndarray, c2: float) -> tuple[np.ndarray, n
 
 
 def resonant_growth(
+    *,
     taus: float,
     mu: float,
     theta_deg: float = 30.0,
     kz_sign: int = 1,
-    *,
     Pi: float = 0.05,
     vz: Union[float, str] = "settling",
     drag: str = "consistent",
@@ -191,13 +191,13 @@ def resonant_growth(
     τ_s = 0.001, μ = 1e-4 at θ_k = 30°, the faster sign of k_z (−): the operator peaks at
     K = 53.07 with s = 0.003945 Ω:
 
-    >>> K, s = resonant_growth(0.001, 1e-4, 30.0, -1)
+    >>> K, s = resonant_growth(taus=0.001, mu=1e-4, theta_deg=30.0, kz_sign=-1)
     >>> round(K, 2), round(s, 6)
     (53.06, 0.003945)
     """
     _check(taus, mu, Pi, theta_deg, kz_sign)
     beta = DRAG_MODELS[list(DRAG_MODELS)[drag_code(drag)]][1]
-    w = relative_drift(taus, mu, Pi, vz)
+    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
     kh = _unit_k(theta_deg, kz_sign)
     W = float(kh @ w)
     if W == 0.0:
@@ -227,11 +227,11 @@ def resonant_growth(
 
 
 def large_k_growth(
+    *,
     taus: float,
     mu: float,
     theta_deg: float = 30.0,
     kz_sign: int = 1,
-    *,
     Pi: float = 0.05,
     vz: Union[float, str] = "settling",
     drag: str = "consistent",
@@ -246,12 +246,12 @@ def large_k_growth(
     Thesis Fig 4.3, τ_s = 1, μ = 0.1 (faster sign): fixed t_s gives 0.0150 (operator: 0.0145),
     Epstein drag 0.0231 (operator: 0.0222):
 
-    >>> [round(large_k_growth(1.0, 0.1, 30.0, -1, drag=d), 4) for d in ("consistent", "epstein")]
+    >>> [round(large_k_growth(taus=1.0, mu=0.1, theta_deg=30.0, kz_sign=-1, drag=d), 4) for d in ("consistent", "epstein")]
     [0.015, 0.0231]
     """
     _check(taus, mu, Pi, theta_deg, kz_sign)
     beta = DRAG_MODELS[list(DRAG_MODELS)[drag_code(drag)]][1]
-    w = relative_drift(taus, mu, Pi, vz)
+    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
     kh = _unit_k(theta_deg, kz_sign)
     W = float(kh @ w)
     c2 = math.inf if Pi == 0 else 1.0 / Pi**2
@@ -267,31 +267,31 @@ def large_k_growth(
     return mu / taus * (transverse * (1.0 / W + beta * W / sub) - (1.0 - beta) * W * W * compress / sub)
 
 
-def perpendicular_direction(taus: float, mu: float, *, Pi: float = 0.05,
+def perpendicular_direction(*, taus: float, mu: float, Pi: float = 0.05,
                             vz: Union[float, str] = "settling") -> tuple[float, int]:
     """(θ_⊥ in degrees, sign of k_z) of the axisymmetric direction k̂ ⟂ w (the high-|k| RDI).
 
-    >>> th, sign = perpendicular_direction(0.01, 0.1)
+    >>> th, sign = perpendicular_direction(taus=0.01, mu=0.1)
     >>> round(th, 2), sign
     (84.8, -1)
     """
     _check(taus, mu, Pi, 45.0, 1)
-    w = relative_drift(taus, mu, Pi, vz)
+    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
     if w[0] == 0.0 or w[2] == 0.0:
         raise UserError("k̂ ⟂ w needs a drift with both radial and vertical components")
     return math.degrees(math.atan(abs(w[2] / w[0]))), int(-np.sign(w[0] * w[2]))
 
 
-def high_k_growth(taus: float, mu: float, K: ArrayLike, *, Pi: float = 0.05,
+def high_k_growth(*, taus: float, mu: float, K: ArrayLike, Pi: float = 0.05,
                   vz: Union[float, str] = "settling") -> np.ndarray:
     """Leading-order growth ∝ (μK)^{1/3} along k̂ ⟂ w at wavenumber K = |k|ηr (module docstring).
 
     Valid for Ω|k̂_z| ≪ s ≪ 1/τ_s (corrections of relative order k̂_z²Ω²/s² and s τ_s).
 
-    >>> round(float(high_k_growth(0.001, 0.01, 1e5)), 4)
+    >>> round(float(high_k_growth(taus=0.001, mu=0.01, K=1e5)), 4)
     1.0857
     """
     _check(taus, mu, Pi, 45.0, 1)
-    w = relative_drift(taus, mu, Pi, vz)
+    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
     K = np.asarray(K, dtype=np.float64)
     return math.sqrt(3.0) / 2.0 * np.cbrt(mu * K * abs(w[0] * w[2]) / (math.hypot(w[0], w[2]) * (1 + taus**2)))

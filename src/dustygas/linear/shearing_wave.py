@@ -39,7 +39,6 @@ Definitions used by the results:
 from __future__ import annotations
 
 import math
-from concurrent.futures import Executor
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -51,7 +50,7 @@ from ..errors import UserError
 from .modes import eigenmodes
 from .operator import DRAG_MODELS, StreamingParams, _plane_basis, fill_operator, state_labels
 
-__all__ = ["ShearingWave", "shearing_wave", "SweepResult", "sweep"]
+__all__ = ["ShearingWave", "shearing_wave", "swing_time", "SHEAR_RATE"]
 
 SHEAR_RATE = 1.5  # q Ω for a Keplerian disk, Ω = 1
 
@@ -277,95 +276,3 @@ def shearing_wave(
              "initial": initial if isinstance(initial, str) else "given", "shear": "-(3/2) Omega x y_hat",
              "kx_of_t": "kx0 + 1.5 ky t"}
     return ShearingWave(p, sol.t, kx_t, state, state_labels(p.nspecies, indexed=True), amp, eamp, attrs)
-
-
-# ---------------------------------------------------------------------------- sweeps
-
-
-def _sweep_task(task: tuple) -> tuple[float, float]:
-    """One point of :func:`sweep` (top level so that process and MPI pools can pickle it)."""
-    taus, mu, kx, ky, kz, Pi, drag, t_end, initial, rtol, atol = task
-    p = StreamingParams(taus=taus, mu=mu, kx=kx, kz=kz, ky=ky, Pi=Pi, drag=drag)
-    if t_end == "swing":
-        if ky == 0 or kx * ky >= 0:
-            return math.nan, math.nan
-        span = (0.0, 2.0 * swing_time(kx, ky))
-    else:
-        span = (0.0, float(t_end))
-    w = shearing_wave(p, span, initial=initial, n_out=2, rtol=rtol, atol=atol)
-    return w.amplification, w.energy_amplification
-
-
-@dataclass
-class SweepResult:
-    """Amplifications over a (μ, τ_s, k_x0, k_y) grid; arrays of shape (n_mu, n_taus, n_kx, n_ky)."""
-
-    mu: np.ndarray
-    taus: np.ndarray
-    kx: np.ndarray
-    ky: np.ndarray
-    amplification: np.ndarray
-    energy_amplification: np.ndarray
-    attrs: dict[str, Any] = field(default_factory=dict)
-
-    def preferred_angle(self, t_obs: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """For every (μ, τ_s): the most amplified wave's angle in the k_x–k_y plane.
-
-        Returns ``(angle_deg, kx, ky)`` of shape (n_mu, n_taus) with angle = atan2(k_y, k_x) in
-        degrees, for the initial wavevector, or -- with ``t_obs`` -- for the wavevector the
-        sheared wave has at time ``t_obs`` (what an FFT of a snapshot at t_obs would show).
-        """
-        a = np.where(np.isfinite(self.amplification), self.amplification, -np.inf)
-        flat = a.reshape(a.shape[0], a.shape[1], -1)
-        idx = np.argmax(flat, axis=-1)
-        i, j = np.unravel_index(idx, a.shape[2:])
-        kx = self.kx[i] + (SHEAR_RATE * self.ky[j] * t_obs if t_obs is not None else 0.0)
-        ky = self.ky[j]
-        return np.degrees(np.arctan2(ky, kx)), kx, ky
-
-
-def sweep(
-    mu: ArrayLike,
-    taus: ArrayLike,
-    kx: ArrayLike,
-    ky: ArrayLike,
-    *,
-    kz: float = 0.0,
-    Pi: float = 0.05,
-    drag: str = "consistent",
-    t_end: float | str = 2 * math.pi,
-    initial: str = "fastest",
-    executor: Executor | None = None,
-    chunksize: int = 1,
-    rtol: float = 1e-8,
-    atol: float = 1e-12,
-) -> SweepResult:
-    """Shearing-wave amplification over the 4D grid (μ, τ_s, k_x0, k_y).
-
-    Every point is an independent :func:`shearing_wave` integration over (0, ``t_end``)
-    (``t_end="swing"``: each leading wave's symmetric swing; other waves give NaN), run
-    through ``executor.map`` -- any :class:`concurrent.futures.Executor`
-    (``ProcessPoolExecutor``, ``mpi4py.futures.MPIPoolExecutor``, a dask client's executor),
-    or serially in this process when ``executor`` is None. Results do not depend on the
-    executor (each point is computed by the same deterministic code).
-    """
-    grids = [np.atleast_1d(np.asarray(g, dtype=np.float64)) for g in (mu, taus, kx, ky)]
-    if any(g.ndim != 1 for g in grids):
-        raise UserError("sweep: mu, taus, kx, ky must be 1D grids")
-    if not (t_end == "swing" or (isinstance(t_end, (int, float)) and t_end > 0)):
-        raise UserError(f"t_end = {t_end!r}: a positive time or 'swing'")
-    tasks = [(float(t), float(m), float(a), float(b), float(kz), float(Pi), drag, t_end, initial, rtol, atol)
-             for m in grids[0] for t in grids[1] for a in grids[2] for b in grids[3]]
-    for t in tasks[:1]:  # validate once, here, with a one-line error
-        StreamingParams(taus=t[0], mu=t[1], kx=t[2], kz=t[4], ky=t[3], Pi=t[5], drag=t[6])
-    if executor is None:
-        results = list(map(_sweep_task, tasks))
-    else:
-        results = list(executor.map(_sweep_task, tasks, chunksize=chunksize))
-    shape = tuple(g.size for g in grids)
-    amp = np.array([r[0] for r in results]).reshape(shape)
-    eamp = np.array([r[1] for r in results]).reshape(shape)
-    attrs = {"kz": float(kz), "Pi": float(Pi), "drag": drag, "t_end": t_end, "initial": initial,
-             "rtol": rtol, "atol": atol, "amplification": "|drho_p(t_end)|/|drho_p(0)|",
-             "energy_amplification": "sqrt(E(t_end)/E(0))"}
-    return SweepResult(*grids, amp, eamp, attrs)

@@ -33,7 +33,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["NSHEquilibrium", "nsh_velocities", "nsh_velocities_multi"]
+__all__ = ["NSHEquilibrium", "nsh_velocities", "nsh_velocities_multi", "nsh_velocities_moments"]
 
 
 class NSHEquilibrium(NamedTuple):
@@ -102,10 +102,26 @@ def nsh_velocities_multi(taus: ArrayLike, mus: ArrayLike, eta_vK: ArrayLike = 1.
     taus = np.atleast_1d(np.asarray(taus, dtype=np.float64))
     mus = np.atleast_1d(np.asarray(mus, dtype=np.float64))
     taus, mus = np.broadcast_arrays(taus, mus)
-    eta_vK = np.asarray(eta_vK, dtype=np.float64)
     q = 1.0 / (1.0 + taus**2)
     a = np.sum(mus * q, axis=-1)
     b = np.sum(mus * taus * q, axis=-1)
+    return nsh_velocities_moments(a, b, taus, eta_vK)
+
+
+def nsh_velocities_moments(a: ArrayLike, b: ArrayLike, taus: ArrayLike, eta_vK: ArrayLike = 1.0) -> NSHEquilibrium:
+    """NSH drift from the moments :math:`A` and :math:`B` of the dust (module docstring).
+
+    For a continuous size distribution :math:`\\sigma(\\tau)` (dust-to-gas ratio per unit
+    stopping time) the moments are the integrals :math:`A = \\int \\sigma/(1+\\tau^2)\\,d\\tau`
+    and :math:`B = \\int \\sigma\\tau/(1+\\tau^2)\\,d\\tau`, the continuum limit of the sums
+    (Paardekooper, McNally & Lovascio 2020); the dust velocities are then wanted at any ``taus``
+    (trailing species axis).
+    """
+    a = np.asarray(a, dtype=np.float64)
+    b = np.asarray(b, dtype=np.float64)
+    taus = np.asarray(taus, dtype=np.float64)
+    eta_vK = np.asarray(eta_vK, dtype=np.float64)
+    q = 1.0 / (1.0 + taus**2)
     delta = (1.0 + a) ** 2 + b**2
     ux = 2.0 * b / delta
     uy = -(1.0 + a) / delta

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import Sequence
 
 import numpy as np
 
@@ -76,6 +77,8 @@ SI_GRID = {
 }
 SI_TAUS = Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True)
 SI_AMPLITUDE = Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1)
+SI_PRESSURE_FRAME = Param("gas", "global pressure gradient as a force on the gas, or the opposite force on the "
+                          "particles", choices=("gas", "particles"))
 
 
 @dataclass
@@ -105,8 +108,8 @@ def _displace(pos0: np.ndarray, k: np.ndarray, amp: complex) -> np.ndarray:
 
 
 def streaming_box(
-    taus: float,
-    mu: float,
+    taus: float | Sequence[float],
+    mu: float | Sequence[float],
     kx: float,
     kz: float,
     Pi: float,
@@ -124,29 +127,38 @@ def streaming_box(
 
     ``taus, mu, kx, kz, Pi, vz`` are those of :class:`~dustygas.linear.StreamingParams` (K in
     units of 1/(ηr), ``vz`` in ηv_K: a steady vertical dust drift relative to the gas, held by
-    constant accelerations ``vz/t_s`` on the dust and ``-mu vz/t_s`` on the gas). ``shape`` is
+    constant accelerations ``vz/t_s`` on the dust and ``-mu vz/t_s`` on the gas). Sequences
+    ``taus``, ``mu`` give N dust species (N-species NSH drift, Benítez-Llambay, Krapp & Pessah
+    2019, eqs. 79-84), each on its own lattice of ``lattice^2`` particles per cell displaced by
+    its own density wave (``vz`` must then be 0). ``shape`` is
     ``(nx, nz)``; ``scheme`` the gas scheme (``integrator, reconstruction, limiter, riemann,
     cfl``); ``cfg`` a configuration with a ``[particles]`` section (else the defaults).
     """
     from ..linear import StreamingParams, fastest_mode
-    from ..physics import nsh_velocities
+    from ..physics import nsh_velocities, nsh_velocities_multi
 
     if kx == 0 or kz == 0:
         raise SetupError("the 2D box holds one wavelength along x and z: kx and kz must be non-zero")
+    multi = not np.isscalar(taus) or not np.isscalar(mu)
+    if multi and vz != 0.0:
+        raise SetupError("several dust species: a vertical drift (vz != 0) is not supported")
+    if multi:
+        taus, mu = list(np.atleast_1d(taus).astype(float)), list(np.atleast_1d(mu).astype(float))
     mode = fastest_mode(StreamingParams(taus=taus, mu=mu, kx=kx, kz=kz, Pi=Pi, drag=linearisation, vz=vz))
     ev = mode.eigenvector
     k = np.array([kx / Pi, 0.0, kz / Pi])  # code units: length unit eta r = Pi H
     nx, nz = shape
     mesh = Mesh((nx, 1, nz), (2 * math.pi / abs(k[0]), 1.0, 2 * math.pi / abs(k[2])))
     eta_vk = Pi  # velocity unit of the linear theory in units of c_s
-    t_stop = taus  # Omega = 1
     gas_frame = pressure_frame == "gas"
     gas = GridEngine(mesh, cs=1.0, boundaries=("periodic", "periodic", "periodic"), omega=1.0, q=1.5,
                      orbital_advection=True, eta_vK=eta_vk if gas_frame else 0.0, **scheme)
-    eq = nsh_velocities(taus, mu)
+    taus_j, mu_j = np.atleast_1d(taus).astype(float), np.atleast_1d(mu).astype(float)
+    eq = nsh_velocities_multi(taus_j, mu_j) if multi else nsh_velocities(taus, mu)
     boost = 0.0 if gas_frame else 1.0  # particle frame: every velocity + eta v_K y^
     U = np.array([float(eq.gas_vx), float(eq.gas_vy) + boost, 0.0]) * eta_vk
-    V = np.array([float(eq.dust_vx), float(eq.dust_vy) + boost, vz]) * eta_vk
+    V_j = [np.array([float(np.atleast_1d(eq.dust_vx)[j]), float(np.atleast_1d(eq.dust_vy)[j]) + boost, vz]) * eta_vk
+           for j in range(len(taus_j))]
     # ---- gas: cell averages of the eigenmode
     x, y, z = mesh.meshgrid()
     phase = np.exp(1j * (k[0] * x + k[2] * z)) * np.ones((nz, 1, nx))
@@ -164,29 +176,32 @@ def streaming_box(
     lower, dx, box = mesh.lower, mesh.dx, mesh.size
     pos0 = lattice_positions(mesh.shape, lower, dx, lattice, 0.0 if kernel == "cic" and lattice % 2 else 0.5)
     npart = pos0.shape[1]
-    m = mu * 1.0 * mesh.cell_volume / lattice**2
     eps = 1e-4  # a small wave measures the kernel's transfer function T (linear in eps)
     probe = wrap_positions(_displace(pos0, k, complex(eps)), lower, box, mesh.shape)
-    rho_p = deposit_density(mesh, probe, np.full(npart, m), kernel)
-    T = (2.0 * np.mean(rho_p * np.conj(phase)) / mu).real / eps
-    amp_p = A * ev["drho_p"] * S / T
-    pos = wrap_positions(_displace(pos0, k, amp_p), lower, box, mesh.shape)
-    ph = np.exp(1j * (k[0] * pos[0] + k[2] * pos[2]))
-    vel = np.empty((3, npart))
-    for a, key in enumerate(("wx", "wy", "wz")):
-        vel[a] = V[a] + (A * ev[key] * eta_vk * ph).real  # relative to the shear (orbital advection)
-    store = ParticleStore.create(pos, vel, 0, m)
+    m0 = mu_j[0] * 1.0 * mesh.cell_volume / lattice**2
+    rho_p = deposit_density(mesh, probe, np.full(npart, m0), kernel)
+    T = (2.0 * np.mean(rho_p * np.conj(phase)) / mu_j[0]).real / eps
+    parts = []
+    for j in range(len(taus_j)):  # every species on its own lattice, displaced by its own wave
+        pick = (lambda key: ev[key][j]) if multi else (lambda key: ev[key])  # noqa: E731
+        pos = wrap_positions(_displace(pos0, k, A * pick("drho_p") * S / T), lower, box, mesh.shape)
+        ph = np.exp(1j * (k[0] * pos[0] + k[2] * pos[2]))
+        vel = np.empty((3, npart))
+        for a, key in enumerate(("wx", "wy", "wz")):
+            vel[a] = V_j[j][a] + (A * pick(key) * eta_vk * ph).real  # relative to the shear (orbital advection)
+        parts.append((pos, vel, np.full(npart, j), np.full(npart, mu_j[j] * mesh.cell_volume / lattice**2)))
+    store = ParticleStore.create(*(np.concatenate([p[i] for p in parts], axis=-1) for i in range(4)))
     mode_numbers = (1, 0, 1 if k[2] > 0 else -1)
     terms = [RotatingFrame(1.0, 1.5, relative_to_shear=True),
-             ConstantAcceleration(0.0 if gas_frame else -2.0 * eta_vk, 0.0, vz * eta_vk / t_stop)]
-    gas_terms = [GasConstantAcceleration(az=-mu * vz * eta_vk / t_stop)] if vz != 0.0 else []
+             ConstantAcceleration(0.0 if gas_frame else -2.0 * eta_vk, 0.0, vz * eta_vk / taus_j[0])]
+    gas_terms = [GasConstantAcceleration(az=-mu_j[0] * vz * eta_vk / taus_j[0])] if vz != 0.0 else []
     kwargs = dict(particle_terms=terms, gas_terms=gas_terms, mode=mode_numbers)
     if cfg is not None:
-        engine = particle_engine_from_config(cfg, gas, store, [t_stop], **kwargs)
+        engine = particle_engine_from_config(cfg, gas, store, list(taus_j), **kwargs)
     else:
         from ..particles import ParticleGridEngine
 
-        engine = ParticleGridEngine(gas, store, [t_stop], kernel=kernel, **kwargs)
+        engine = ParticleGridEngine(gas, store, list(taus_j), kernel=kernel, **kwargs)
     return StreamingBox(engine, k, mode_numbers, ev, mode.omega)
 
 
@@ -213,8 +228,7 @@ class SILinear(Problem):
             "Pi": Param(0.05, "eta v_K / c_s (velocity unit eta v_K = Pi, length unit eta r = Pi H)", min=0.0,
                         min_open=True),
             "amplitude": SI_AMPLITUDE,
-            "pressure_frame": Param("gas", "global pressure gradient as a force on the gas, or the opposite force "
-                                    "on the particles", choices=("gas", "particles")),
+            "pressure_frame": SI_PRESSURE_FRAME,
         },
     }
 

@@ -21,7 +21,7 @@ def fig4_1(output: Path, quick: bool = True) -> list[Path]:
     n = 60 if quick else 200
     mu = np.logspace(-2, 2, n)
     taus = np.logspace(-3, 1, n)
-    gm = growth_map(mu, taus, method="kx", kz=KZ, kx_range=KX_RANGE, Pi=0.0)
+    gm = growth_map(mu=mu, taus=taus, method="kx", kz=KZ, kx_range=KX_RANGE, Pi=0.0)
     h5 = gm.save(output / "fig4_1.h5")
     js = write_json(output / "fig4_1.json", {"attrs": gm.attrs, "k_range": k_range_text(gm.attrs),
                                               "max_growth": float(np.nanmax(gm.growth))})

@@ -25,7 +25,7 @@ def growth_curves(quick: bool, vz, drag: str = "consistent") -> tuple[np.ndarray
     curves = {}
     for mu in MUS:
         for taus in TAUS:
-            curves[f"taus={taus:g} mu={mu:g}"] = growth_vs_k(taus, mu, k, theta_deg=THETA, Pi=PI, vz=vz,
+            curves[f"taus={taus:g} mu={mu:g}"] = growth_vs_k(taus=taus, mu=mu, k=k, theta_deg=THETA, Pi=PI, vz=vz,
                                                              mirror=vz != 0.0, drag=drag)
     return k, curves
 

@@ -54,11 +54,11 @@ def _perpendicular_curves(k: np.ndarray) -> tuple[dict[str, np.ndarray], dict[st
     for mu in MUS:
         for taus in TAUS:
             name = f"taus={taus:g} mu={mu:g}"
-            th, sign = perpendicular_direction(taus, mu, Pi=PI)
+            th, sign = perpendicular_direction(taus=taus, mu=mu, Pi=PI)
             t = math.radians(th)
-            curves[name] = growth_rate(taus, mu, k * math.sin(t), sign * k * math.cos(t), Pi=PI, vz="settling")
+            curves[name] = growth_rate(taus=taus, mu=mu, kx=k * math.sin(t), kz=sign * k * math.cos(t), Pi=PI, vz="settling")
             info[name] = {"theta_perp_deg": th, "kz_sign": sign, "s_at_Kmax": float(curves[name][-1]),
-                          "mu_K_one_third_law_at_Kmax": float(high_k_growth(taus, mu, k[-1], Pi=PI))}
+                          "mu_K_one_third_law_at_Kmax": float(high_k_growth(taus=taus, mu=mu, K=k[-1], Pi=PI))}
     return curves, info
 
 
@@ -69,16 +69,16 @@ def _theory(curves: dict, curves_ep: dict, k: np.ndarray) -> dict[str, dict]:
     out = {}
     for name, s in curves.items():
         taus, mu = (float(part.split("=")[1]) for part in name.split())
-        res = max((resonant_growth(taus, mu, THETA, sg, Pi=PI) + (sg,) for sg in (1, -1)), key=lambda r: r[1])
+        res = max((resonant_growth(taus=taus, mu=mu, theta_deg=THETA, kz_sign=sg, Pi=PI) + (sg,) for sg in (1, -1)), key=lambda r: r[1])
         tail = k >= k[-1] / 10
         out[name] = {
             "peak": float(np.max(s)), "K_peak": float(k[np.argmax(s)]),
             "resonance_K": res[0], "resonance_growth": res[1], "resonance_kz_sign": res[2],
             "s_at_Kmax": float(s[-1]),
             "relative_spread_last_decade": float(np.ptp(s[tail]) / max(abs(s[-1]), 1e-300)),
-            "plateau_formula": max(large_k_growth(taus, mu, THETA, sg, Pi=PI) for sg in (1, -1)),
+            "plateau_formula": max(large_k_growth(taus=taus, mu=mu, theta_deg=THETA, kz_sign=sg, Pi=PI) for sg in (1, -1)),
             "s_at_Kmax_epstein": float(curves_ep[name][-1]),
-            "plateau_formula_epstein": max(large_k_growth(taus, mu, THETA, sg, Pi=PI, drag="epstein")
+            "plateau_formula_epstein": max(large_k_growth(taus=taus, mu=mu, theta_deg=THETA, kz_sign=sg, Pi=PI, drag="epstein")
                                            for sg in (1, -1)),
         }
     return out
@@ -123,7 +123,7 @@ def fig4_3(output: Path, quick: bool = True) -> list[Path]:
     ax.set_ylabel(r"growth rate $s/\Omega$ of the fastest mode")
     t1 = theory["taus=1 mu=0.1"]
     t40 = math.radians(40.0)  # the angle at which fixed t_s gives the thesis's "~0.03"
-    s40 = max(float(growth_rate(1.0, 0.1, k[-1] * math.sin(t40), sg * k[-1] * math.cos(t40), Pi=PI, vz="settling"))
+    s40 = max(float(growth_rate(taus=1.0, mu=0.1, kx=k[-1] * math.sin(t40), kz=sg * k[-1] * math.cos(t40), Pi=PI, vz="settling"))
               for sg in (1, -1))
     ax.set_title(f"thesis Fig 4.3: θk = ±{THETA:g}° from vertical (faster of ±Kz), Π = {PI:g}, "
                  "v̄z = −cs τs/(2τs²+1)\n"
@@ -139,7 +139,7 @@ def fig4_3(output: Path, quick: bool = True) -> list[Path]:
         lines += ax.loglog(k, np.where(perp[name] > 0, perp[name], np.nan), color=c, lw=1.4)
         taus, mu = (float(part.split("=")[1]) for part in name.split())
         if taus <= 0.1:  # the (μK)^{1/3} law needs s τ_s ≪ 1
-            ax.loglog(k[k > 1e2], high_k_growth(taus, mu, k[k > 1e2], Pi=PI), color=c, lw=1.3, ls=":")
+            ax.loglog(k[k > 1e2], high_k_growth(taus=taus, mu=mu, K=k[k > 1e2], Pi=PI), color=c, lw=1.3, ls=":")
     law = ax.plot([], [], color="k", lw=1.3, ls=":",
             label=r"$\frac{\sqrt{3}}{2}\,[\mu K\,|w_x w_z|/(|w|(1+\tau_s^2))]^{1/3}$ ($\tau_s \leq 0.1$)")
     ax.set_ylim(1e-6, 10.0)

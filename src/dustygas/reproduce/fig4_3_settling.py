@@ -20,9 +20,9 @@ def fig4_3_settling(output: Path, quick: bool = True) -> list[Path]:
     n = 24 if quick else 100
     mu = np.logspace(-3, 0, n)
     taus = np.logspace(-3, 0.5, n)
-    gm = growth_map(mu, taus, method="angle", theta_deg=THETA, k_range=(1e-2, 1e5), Pi=PI, vz="settling",
+    gm = growth_map(mu=mu, taus=taus, method="angle", theta_deg=THETA, k_range=(1e-2, 1e5), Pi=PI, vz="settling",
                     mirror=True, coarse=40 if quick else 60)
-    ratio = settling_ratio(gm.growth, taus[:, None])
+    ratio = settling_ratio(growth=gm.growth, taus=taus[:, None])
     gm.attrs["quantity"] = "t_growth/t_settle = (Omega/s) taus/(2 taus^2 + 1), thesis eq. 4.20"
     h5 = gm.save(output / "fig4_3_settling.h5")
     import h5py
@@ -30,7 +30,7 @@ def fig4_3_settling(output: Path, quick: bool = True) -> list[Path]:
     with h5py.File(h5, "a") as f:
         f.create_dataset("t_growth_over_t_settle", data=ratio)
     k, curves = growth_curves(quick, "settling")
-    rcurves = {name: settling_ratio(s, float(name.split()[0].split("=")[1])) for name, s in curves.items()}
+    rcurves = {name: settling_ratio(growth=s, taus=float(name.split()[0].split("=")[1])) for name, s in curves.items()}
     csv = write_csv(output / "fig4_3_settling.csv", {"K": k, **rcurves},
                     ["t_growth/t_settle versus K for the Fig 4.3 curves (inf: not growing)",
                      f"theta_k = +-{THETA:g} deg, Pi = {PI:g}, settling drift eq. 4.19"])
