@@ -1,0 +1,543 @@
+"""Kernels of hierarchical individual time steps: what the *active* particles of a sub-step need.
+
+With block time steps (:mod:`~dustygas.sph.timesteps`) only a subset :math:`S` of the particles
+is synchronised at a sub-step, typically the inner disk. Every kernel here works on :math:`S`
+(its *slots*, :math:`S` listed in k-d-tree order) and costs :math:`O(|S|)`, apart from the tree
+refit, which is a cheap :math:`O(N)` pass:
+
+* :func:`refit_tree` -- node boxes and largest :math:`h` for the current positions, keeping the
+  tree's particle order (rebuilt from scratch only now and then, see the engine);
+* :func:`active_search` -- neighbour rows of the active particles among *all* particles, split
+  into same-species rows (density, pressure) and other-species rows (drag);
+* :func:`active_densities` -- :math:`h` and :math:`\\rho` (thesis eq. 3.1) of the active particles;
+* :func:`active_hydro` and :func:`active_drag` -- pair forces of the active particles (thesis
+  eqs. 3.2-3.3 and 3.19), each stored per row entry without the partner's mass, so that the
+  partner's share follows from the same number (:func:`kick_active`, :func:`kick_passive`);
+* :func:`reverse_rows` -- for every inactive neighbour, the entries of the active rows it
+  appears in.
+
+Every pair term is symmetric before the partner's mass is applied, so the momentum one
+particle receives is the momentum its partner loses, to round-off.
+
+All loops gather into per-slot outputs (no atomics): deterministic for any thread count.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from .density import solve_one_smoothing_length
+from .dust.two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pair
+from .forces import pressure_pair
+from .kernels import kernel_dshape
+from .neighbours import minimum_image
+from .particles import GAS
+from .viscosity import signal_speed, viscous_pair
+
+__all__ = ["refit_tree", "leaf_of_particles", "active_search", "active_densities", "pack_hydro", "active_hydro",
+           "active_drag", "reverse_rows", "kick_active", "kick_passive", "limit_levels", "HYDRO", "DRAG", "NPACK"]
+
+HYDRO = 0
+DRAG = 1
+# columns of the packed per-particle table of :func:`active_hydro`
+_X, _Y, _Z, _VX, _VY, _VZ, _HINV, _GRADNORM, _M, _P, _RHOINV, _OMBAR, _FORM, _CS, _ALPHA = range(15)
+NPACK = 15
+
+
+# --------------------------------------------------------------------------- tree
+
+
+@njit(parallel=True, cache=True)
+def refit_tree(pos, h, order, start, end, child, leaves, lo, hi, hmax):
+    """Recompute every node's bounding box and largest ``h`` bottom-up (children are stored after
+    their parents, :func:`dustygas.sph.kdtree.build_tree`); the particle order is kept."""
+    for il in prange(leaves.shape[0]):
+        node = leaves[il]
+        x0 = y0 = z0 = np.inf
+        x1 = y1 = z1 = -np.inf
+        hm = 0.0
+        for k in range(start[node], end[node]):
+            i = order[k]
+            x0 = min(x0, pos[i, 0])
+            x1 = max(x1, pos[i, 0])
+            y0 = min(y0, pos[i, 1])
+            y1 = max(y1, pos[i, 1])
+            z0 = min(z0, pos[i, 2])
+            z1 = max(z1, pos[i, 2])
+            hm = max(hm, h[i])
+        lo[node, 0], lo[node, 1], lo[node, 2] = x0, y0, z0
+        hi[node, 0], hi[node, 1], hi[node, 2] = x1, y1, z1
+        hmax[node] = hm
+    for node in range(start.shape[0] - 1, -1, -1):
+        c = child[node]
+        if c < 0:
+            continue
+        for d in range(3):
+            lo[node, d] = min(lo[c, d], lo[c + 1, d])
+            hi[node, d] = max(hi[c, d], hi[c + 1, d])
+        hmax[node] = max(hmax[c], hmax[c + 1])
+
+
+@njit(cache=True)
+def leaf_of_particles(order, start, end, child, n):
+    """The leaf holding each particle, and the list of leaves."""
+    leaf = np.empty(n, np.int64)
+    nleaves = 0
+    for node in range(start.shape[0]):
+        if child[node] < 0:
+            nleaves += 1
+            for k in range(start[node], end[node]):
+                leaf[order[k]] = node
+    leaves = np.empty(nleaves, np.int64)
+    j = 0
+    for node in range(start.shape[0]):
+        if child[node] < 0:
+            leaves[j] = node
+            j += 1
+    return leaf, leaves
+
+
+@njit(inline="always")
+def _gap2(qlo, qhi, lo, hi, node, length, periodic):
+    """Squared distance between the query box and a node's box (minimum image where periodic)."""
+    g2 = 0.0
+    for d in range(3):
+        ca = 0.5 * (qlo[d] + qhi[d])
+        cb = 0.5 * (lo[node, d] + hi[node, d])
+        sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
+        gap = sep - 0.5 * (qhi[d] - qlo[d]) - 0.5 * (hi[node, d] - lo[node, d])
+        if gap > 0.0:
+            g2 += gap * gap
+    return g2
+
+
+@njit(cache=True)
+def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out):
+    """Leaves within reach of the query box (written to ``out`` while there is room); returns the
+    number of particles they hold and the number of leaves."""
+    stack = np.empty(128, np.int64)
+    stack[0] = 0
+    top = 1
+    total = 0
+    nl = 0
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        reach = max(qh, hmax[node])
+        if _gap2(qlo, qhi, lo, hi, node, length, periodic) >= r2 * reach * reach:
+            continue
+        c = child[node]
+        if c >= 0:
+            stack[top] = c
+            stack[top + 1] = c + 1
+            top += 2
+            continue
+        if nl < out.shape[0]:
+            out[nl] = node
+        nl += 1
+        total += end[node] - start[node]
+    return total, nl
+
+
+@njit(parallel=True, cache=True)
+def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, child, lo, hi, hmax, radius,
+                  length, periodic, same_start, same_room, same_index, same_count, cross_start, cross_room,
+                  cross_index, cross_count):
+    """Neighbour rows of the active particles ``act`` among all particles.
+
+    ``group`` delimits runs of ``act`` that share a tree leaf (``act[group[g]:group[g+1]]``); each run
+    walks the tree once with the bounding box of its particles. A particle ``b`` enters the row of
+    slot ``i`` (particle ``a = act[i]``) when :math:`r_{ab} < R\\max(h^q_i, h_b)` (``h_query`` per slot,
+    ``h_src`` per particle): into the same-species row ``same_index[same_start[i]:][:same_count[i]]``,
+    or the other-species row ``cross_*``. A row has room for ``*_room[i]`` entries; the counts are
+    the true numbers even when they exceed it (the caller then searches those slots again with more
+    room).
+    """
+    r2 = radius * radius
+    for g in prange(group.shape[0] - 1):
+        s0, s1 = group[g], group[g + 1]
+        qlo = np.empty(3)
+        qhi = np.empty(3)
+        for d in range(3):
+            qlo[d] = np.inf
+            qhi[d] = -np.inf
+        qh = 0.0
+        for i in range(s0, s1):
+            a = act[i]
+            for d in range(3):
+                qlo[d] = min(qlo[d], pos[a, d])
+                qhi[d] = max(qhi[d], pos[a, d])
+            qh = max(qh, h_query[i])
+        nodes = np.empty(64, np.int64)
+        m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
+        if nl > nodes.shape[0]:
+            nodes = np.empty(nl, np.int64)
+            _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
+        px = np.empty(m)
+        py = np.empty(m)
+        pz = np.empty(m)
+        ph2 = np.empty(m)
+        pid = np.empty(m, np.int64)
+        j = 0
+        for t in range(nl):
+            node = nodes[t]
+            for k in range(start[node], end[node]):
+                b = order[k]
+                px[j] = pos[b, 0]
+                py[j] = pos[b, 1]
+                pz[j] = pos[b, 2]
+                ph2[j] = h_src[b] * h_src[b]
+                pid[j] = b
+                j += 1
+        for i in range(s0, s1):
+            a = act[i]
+            xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+            ha2 = h_query[i] * h_query[i]
+            ta = ptype[a]
+            ns = 0
+            nc = 0
+            o_s, room_s = same_start[i], same_room[i]
+            o_c, room_c = cross_start[i], cross_room[i]
+            for j in range(m):
+                b = pid[j]
+                if b == a:
+                    continue
+                dx = minimum_image(xa - px[j], length[0], periodic[0])
+                dy = minimum_image(ya - py[j], length[1], periodic[1])
+                dz = minimum_image(za - pz[j], length[2], periodic[2])
+                if dx * dx + dy * dy + dz * dz < r2 * max(ha2, ph2[j]):
+                    if ptype[b] == ta:
+                        if ns < room_s:
+                            same_index[o_s + ns] = b
+                        ns += 1
+                    else:
+                        if nc < room_c:
+                            cross_index[o_c + nc] = b
+                        nc += 1
+            same_count[i] = ns
+            cross_count[i] = nc
+
+
+# --------------------------------------------------------------------------- density
+
+
+@njit(parallel=True, cache=True)
+def active_densities(act, pos, mass, h_guess, h_search, same_start, same_index, same_count, shape, norm, ndim, hfact,
+                     length, periodic, tol, maxiter, h_out, rho_out, omega_out, status, iterations):
+    """Smoothing lengths and densities (thesis eq. 3.1) of the active particles from their same-species
+    rows (:func:`dustygas.sph.density.solve_one_smoothing_length`); outputs per slot."""
+    for i in prange(act.shape[0]):
+        a = act[i]
+        h_out[i], rho_out[i], omega_out[i], status[i], iterations[i] = solve_one_smoothing_length(
+            pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index[same_start[i]:],
+            same_count[i], pos, mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter)
+
+
+# --------------------------------------------------------------------------- hydrodynamics
+
+
+@njit(parallel=True, cache=True)
+def pack_hydro(rows, pos, vel, mass, h, rho, omega, P, cs, alpha, norm, ndim, form, out):
+    """Write what a neighbour contributes to the pair forces into ``out[rows]`` (the rows the current
+    sub-step reads: the active particles and their neighbours). ``vel`` are predicted velocities."""
+    for k in prange(rows.shape[0]):
+        a = rows[k]
+        hinv = 1.0 / h[a]
+        out[a, _X] = pos[a, 0]
+        out[a, _Y] = pos[a, 1]
+        out[a, _Z] = pos[a, 2]
+        out[a, _VX] = vel[k, 0]
+        out[a, _VY] = vel[k, 1]
+        out[a, _VZ] = vel[k, 2]
+        out[a, _HINV] = hinv
+        out[a, _GRADNORM] = norm * hinv ** (ndim + 1)
+        out[a, _M] = mass[a]
+        out[a, _P] = P[a]
+        out[a, _RHOINV] = 1.0 / rho[a]
+        out[a, _OMBAR] = 1.0 / (omega[a] * rho[a])
+        out[a, _FORM] = P[a] / (omega[a] * rho[a] * rho[a]) if form == 0 else 1.0 / omega[a]
+        out[a, _CS] = cs[a]
+        out[a, _ALPHA] = alpha[a]
+
+
+@njit(parallel=True, cache=True)
+def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, radius, length, periodic, form, beta,
+                 pair_s, acc, divv, curlv, vsig):
+    """Pressure and artificial-viscosity pair forces of the active gas particles (thesis eqs. 3.2-3.3;
+    :mod:`dustygas.sph.forces`), with :math:`\\nabla\\cdot v`, :math:`|\\nabla\\times v|` and signal speeds.
+
+    ``pair_s[e]`` receives the pair factor :math:`s_{ab}/r_{ab}` of row entry ``e`` (symmetric in
+    :math:`a \\leftrightarrow b`): the acceleration of :math:`a` is :math:`-m_b s_{ab}\\,\\mathbf r_{ab}/r_{ab}`
+    and that of :math:`b` is :math:`+m_a s_{ab}\\,\\mathbf r_{ab}/r_{ab}`. ``acc`` (per slot) is the sum,
+    used for the time step; the kicks are :func:`kick_active` / :func:`kick_passive`.
+    """
+    r2max = radius * radius
+    for i in prange(act.shape[0]):
+        a = act[i]
+        ax = ay = az = 0.0
+        div = cx = cy = cz = 0.0
+        o = same_start[i]
+        if ptype[a] != GAS:
+            for k in range(same_count[i]):
+                pair_s[o + k] = 0.0
+            acc[i, 0] = acc[i, 1] = acc[i, 2] = 0.0
+            divv[i] = curlv[i] = vsig[i] = 0.0
+            continue
+        pa = packed[a]
+        xa, ya, za = pa[_X], pa[_Y], pa[_Z]
+        vxa, vya, vza = pa[_VX], pa[_VY], pa[_VZ]
+        hinv_a = pa[_HINV]
+        gnorm_a = pa[_GRADNORM]
+        cs_a = pa[_CS]
+        alpha_a = pa[_ALPHA]
+        ombar_a = pa[_OMBAR]
+        vs = cs_a
+        for k in range(same_count[i]):
+            b = same_index[o + k]
+            pb = packed[b]
+            dx = minimum_image(xa - pb[_X], length[0], periodic[0])
+            dy = minimum_image(ya - pb[_Y], length[1], periodic[1])
+            dz = minimum_image(za - pb[_Z], length[2], periodic[2])
+            r2 = dx * dx + dy * dy + dz * dz
+            hinv_b = pb[_HINV]
+            if r2 * hinv_a * hinv_a >= r2max and r2 * hinv_b * hinv_b >= r2max:
+                pair_s[o + k] = 0.0
+                continue
+            r = math.sqrt(r2)
+            rinv = 1.0 / r
+            dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
+            dW_b = pb[_GRADNORM] * kernel_dshape(shape, r * hinv_b)
+            dvx = vxa - pb[_VX]
+            dvy = vya - pb[_VY]
+            dvz = vza - pb[_VZ]
+            vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
+            s, _ = pressure_pair(form, pa[_FORM], pb[_FORM], dW_a, dW_b, pa[_P], pb[_P], pa[_RHOINV], pb[_RHOINV],
+                                 vdotr)
+            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, pb[_ALPHA], pb[_CS], beta, ombar_a, pb[_OMBAR])
+            s = (s + (qa * dW_a + qb * dW_b)) * rinv
+            pair_s[o + k] = s
+            m_b = pb[_M]
+            ax -= m_b * s * dx
+            ay -= m_b * s * dy
+            az -= m_b * s * dz
+            div += m_b * vdotr * dW_a
+            w = m_b * dW_a * rinv
+            cx += w * (dvy * dz - dvz * dy)
+            cy += w * (dvz * dx - dvx * dz)
+            cz += w * (dvx * dy - dvy * dx)
+            vs = max(vs, signal_speed(cs_a, pb[_CS], vdotr, beta))
+        acc[i, 0] = ax
+        acc[i, 1] = ay
+        acc[i, 2] = az
+        divv[i] = -ombar_a * div
+        curlv[i] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
+        vsig[i] = vs
+
+
+# --------------------------------------------------------------------------- drag
+
+
+@njit(parallel=True, cache=True)
+def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape, ndim, length, periodic, c_const,
+                projected, gas_kernel, pair_f, acc, tmin):
+    """Two-fluid drag (thesis eqs. 3.18-3.19, :func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`) on the
+    active particles from their other-species rows; ``table`` holds one row per particle (gas and dust).
+
+    ``pair_f[e]`` receives the acceleration of :math:`a` due to row entry ``e`` (the partner's share is
+    :math:`-m_a/m_j` times it), ``acc`` the sum and ``tmin`` the smallest pair stopping time (per slot).
+    ``gas_kernel``: the drag kernel uses only the gas particle's smoothing length (eq. 3.19 as written).
+    """
+    grad = np.zeros((1, 9))
+    for i in prange(act.shape[0]):
+        a = act[i]
+        side = KERNEL_AVERAGE
+        if gas_kernel:
+            side = KERNEL_OWN if ptype[a] == GAS else KERNEL_OTHER
+        ax = ay = az = 0.0
+        tm = math.inf
+        o = cross_start[i]
+        for k in range(cross_count[i]):
+            j = cross_index[o + k]
+            fx, fy, fz, _, tp = drag_pair(table, grad, table, grad, a, j, shape, ndim, length, periodic, c_const,
+                                          projected, False, False, 0.0, False, side)
+            pair_f[o + k, 0] = fx
+            pair_f[o + k, 1] = fy
+            pair_f[o + k, 2] = fz
+            ax += fx
+            ay += fy
+            az += fz
+            tm = min(tm, tp)
+        acc[i, 0] = ax
+        acc[i, 1] = ay
+        acc[i, 2] = az
+        tmin[i] = tm
+
+
+# --------------------------------------------------------------------------- kicks
+
+
+@njit(cache=True)
+def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count, n):
+    """The inactive particles that appear in active rows, and for each the entries it appears in:
+    CSR ``passive``, ``ptr`` over entries ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
+    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order."""
+    cnt = np.zeros(n, np.int64)
+    for i in range(act.shape[0]):
+        if ptype[act[i]] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                if slot[same_index[e]] < 0:
+                    cnt[same_index[e]] += 1
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            if slot[cross_index[e]] < 0:
+                cnt[cross_index[e]] += 1
+    npas = 0
+    total = 0
+    for b in range(n):
+        if cnt[b] > 0:
+            npas += 1
+            total += cnt[b]
+    passive = np.empty(npas, np.int64)
+    ptr = np.empty(npas + 1, np.int64)
+    where = np.full(n, -1, np.int64)
+    ptr[0] = 0
+    u = 0
+    for b in range(n):
+        if cnt[b] > 0:
+            passive[u] = b
+            where[b] = u
+            ptr[u + 1] = ptr[u] + cnt[b]
+            u += 1
+    e_slot = np.empty(total, np.int64)
+    e_pos = np.empty(total, np.int64)
+    e_kind = np.empty(total, np.int8)
+    fill = ptr[:-1].copy()
+    for i in range(act.shape[0]):
+        if ptype[act[i]] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                b = same_index[e]
+                if slot[b] < 0:
+                    f = fill[where[b]]
+                    e_slot[f], e_pos[f], e_kind[f] = i, e, HYDRO
+                    fill[where[b]] += 1
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            b = cross_index[e]
+            if slot[b] < 0:
+                f = fill[where[b]]
+                e_slot[f], e_pos[f], e_kind[f] = i, e, DRAG
+                fill[where[b]] += 1
+    return passive, ptr, e_slot, e_pos, e_kind
+
+
+@njit(inline="always")
+def _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt):
+    """Closing and opening kick weights of the pair (a, b) (:func:`kick_active`)."""
+    elapsed = (tick - max(last_tick[a], last_tick[b])) * tick_dt
+    return elapsed - 0.5 * min(tau_old[a], tau_old[b]), 0.5 * min(tau_new[a], tau_new[b])
+
+
+@njit(parallel=True, cache=True)
+def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_dt, same_start, same_index, same_count,
+                pair_s, cross_start, cross_index, cross_count, pair_f, acc_ext, length, periodic, close, open_):
+    """Closing and opening half kicks of the active particles.
+
+    A pair was last evaluated (and opened with half its expected step, :math:`\\min(\\Delta t_a, \\Delta t_b)/2`
+    with the steps ``tau_old`` then set) at the later of its particles' last activations ``last_tick``;
+    it is closed with the time elapsed since then minus that opening weight -- half the pair step when
+    the step ran its full length, less when a particle was woken early -- and opened again with half
+    its new step (``tau_new``). The external acceleration ``acc_ext`` (per slot) is treated alike
+    with the particle's own steps. Both particles of a pair get the same weights: momentum is
+    conserved to round-off whatever the steps.
+    """
+    for i in prange(act.shape[0]):
+        a = act[i]
+        elapsed = (tick - last_tick[a]) * tick_dt
+        wc = elapsed - 0.5 * tau_old[a]
+        wo = 0.5 * tau_new[a]
+        c0 = wc * acc_ext[i, 0]
+        c1 = wc * acc_ext[i, 1]
+        c2 = wc * acc_ext[i, 2]
+        o0 = wo * acc_ext[i, 0]
+        o1 = wo * acc_ext[i, 1]
+        o2 = wo * acc_ext[i, 2]
+        if ptype[a] == GAS:
+            xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                s = pair_s[e]
+                if s == 0.0:
+                    continue
+                b = same_index[e]
+                f = -mass[b] * s
+                fx = f * minimum_image(xa - pos[b, 0], length[0], periodic[0])
+                fy = f * minimum_image(ya - pos[b, 1], length[1], periodic[1])
+                fz = f * minimum_image(za - pos[b, 2], length[2], periodic[2])
+                wc, wo = _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt)
+                c0 += wc * fx
+                c1 += wc * fy
+                c2 += wc * fz
+                o0 += wo * fx
+                o1 += wo * fy
+                o2 += wo * fz
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            wc, wo = _weights(a, cross_index[e], tau_old, tau_new, last_tick, tick, tick_dt)
+            c0 += wc * pair_f[e, 0]
+            c1 += wc * pair_f[e, 1]
+            c2 += wc * pair_f[e, 2]
+            o0 += wo * pair_f[e, 0]
+            o1 += wo * pair_f[e, 1]
+            o2 += wo * pair_f[e, 2]
+        close[i, 0], close[i, 1], close[i, 2] = c0, c1, c2
+        open_[i, 0], open_[i, 1], open_[i, 2] = o0, o1, o2
+
+
+@njit(parallel=True, cache=True)
+def kick_passive(passive, ptr, e_slot, e_pos, e_kind, act, pos, mass, tau_old, tau_new, last_tick, tick, tick_dt,
+                 pair_s, pair_f, length, periodic, vel):
+    """Kick every inactive neighbour by its share of the active pairs (closing and opening weights
+    together, :func:`kick_active`), in place on ``vel``."""
+    for u in prange(passive.shape[0]):
+        b = passive[u]
+        kx = ky = kz = 0.0
+        for f in range(ptr[u], ptr[u + 1]):
+            a = act[e_slot[f]]
+            e = e_pos[f]
+            wc, wo = _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt)
+            w = wc + wo
+            if e_kind[f] == HYDRO:
+                c = w * mass[a] * pair_s[e]  # + m_a s r_ab / r_ab
+                kx += c * minimum_image(pos[a, 0] - pos[b, 0], length[0], periodic[0])
+                ky += c * minimum_image(pos[a, 1] - pos[b, 1], length[1], periodic[1])
+                kz += c * minimum_image(pos[a, 2] - pos[b, 2], length[2], periodic[2])
+            else:
+                c = -w * mass[a] / mass[b]
+                kx += c * pair_f[e, 0]
+                ky += c * pair_f[e, 1]
+                kz += c * pair_f[e, 2]
+        vel[b, 0] += kx
+        vel[b, 1] += ky
+        vel[b, 2] += kz
+
+
+@njit(cache=True)
+def limit_levels(act, ptype, level, same_start, same_index, same_count, slot, delta, wake):
+    """Time-step limiter (Saitoh & Makino 2009): an active gas particle takes a level at least
+    ``max(neighbour levels) - delta``; an inactive gas neighbour more than ``delta`` levels slower
+    than an active one is marked in ``wake`` (to be activated at the next sub-step). In place."""
+    for i in range(act.shape[0]):
+        a = act[i]
+        if ptype[a] != GAS:
+            continue
+        top = level[a]
+        for e in range(same_start[i], same_start[i] + same_count[i]):
+            top = max(top, level[same_index[e]])
+        level[a] = max(level[a], top - delta)
+    for i in range(act.shape[0]):
+        a = act[i]
+        if ptype[a] != GAS:
+            continue
+        for e in range(same_start[i], same_start[i] + same_count[i]):
+            b = same_index[e]
+            if slot[b] < 0 and level[b] < level[a] - delta:
+                wake[b] = True
