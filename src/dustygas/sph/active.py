@@ -1,20 +1,16 @@
-"""Kernels of hierarchical individual time steps: what the *active* particles of a sub-step need.
+"""Pair kernels of hierarchical individual time steps: densities, forces and kicks of the active particles.
 
 With block time steps (:mod:`~dustygas.sph.timesteps`) only a subset :math:`S` of the particles
-is synchronised at a sub-step, typically the inner disk. Every kernel here works on :math:`S`
-(its *slots*, :math:`S` listed in k-d-tree order) and costs :math:`O(|S|)`, apart from the tree
-refit, which is a cheap :math:`O(N)` pass:
+is active at a sub-step, typically the inner disk. Each kernel here costs :math:`O(|S|)` and works
+on :math:`S` (its *slots*, :math:`S` in tree order) and on the neighbour rows of
+:func:`dustygas.sph.active_search.active_search`:
 
-* :func:`refit_tree` -- node boxes and largest :math:`h` for the current positions, keeping the
-  tree's particle order (rebuilt from scratch only now and then, see the engine);
-* :func:`active_search` -- neighbour rows of the active particles among *all* particles, split
-  into same-species rows (density, pressure) and other-species rows (drag);
 * :func:`active_densities` -- :math:`h` and :math:`\\rho` (thesis eq. 3.1) of the active particles;
 * :func:`active_hydro` and :func:`active_drag` -- pair forces of the active particles (thesis
   eqs. 3.2-3.3 and 3.19), each stored per row entry without the partner's mass, so that the
   partner's share follows from the same number (:func:`kick_active`, :func:`kick_passive`);
-* :func:`reverse_rows` -- for every inactive neighbour, the entries of the active rows it
-  appears in.
+* :func:`reverse_rows` -- for every inactive neighbour, the row entries it appears in;
+* :func:`limit_levels` -- the time-step limiter.
 
 Every pair term is symmetric before the partner's mass is applied, so the momentum one
 particle receives is the momentum its partner loses, to round-off.
@@ -37,188 +33,14 @@ from .neighbours import minimum_image
 from .particles import GAS
 from .viscosity import signal_speed, viscous_pair
 
-__all__ = ["refit_tree", "leaf_of_particles", "active_search", "active_densities", "pack_hydro", "active_hydro",
-           "active_drag", "reverse_rows", "kick_active", "kick_passive", "limit_levels", "HYDRO", "DRAG", "NPACK"]
+__all__ = ["active_densities", "pack_hydro", "active_hydro", "active_drag", "reverse_rows", "kick_active",
+           "kick_passive", "kick_external", "limit_levels", "HYDRO", "DRAG", "NPACK"]
 
 HYDRO = 0
 DRAG = 1
 # columns of the packed per-particle table of :func:`active_hydro`
 _X, _Y, _Z, _VX, _VY, _VZ, _HINV, _GRADNORM, _M, _P, _RHOINV, _OMBAR, _FORM, _CS, _ALPHA = range(15)
 NPACK = 15
-
-
-# --------------------------------------------------------------------------- tree
-
-
-@njit(parallel=True, cache=True)
-def refit_tree(pos, h, order, start, end, child, leaves, lo, hi, hmax):
-    """Recompute every node's bounding box and largest ``h`` bottom-up (children are stored after
-    their parents, :func:`dustygas.sph.kdtree.build_tree`); the particle order is kept."""
-    for il in prange(leaves.shape[0]):
-        node = leaves[il]
-        x0 = y0 = z0 = np.inf
-        x1 = y1 = z1 = -np.inf
-        hm = 0.0
-        for k in range(start[node], end[node]):
-            i = order[k]
-            x0 = min(x0, pos[i, 0])
-            x1 = max(x1, pos[i, 0])
-            y0 = min(y0, pos[i, 1])
-            y1 = max(y1, pos[i, 1])
-            z0 = min(z0, pos[i, 2])
-            z1 = max(z1, pos[i, 2])
-            hm = max(hm, h[i])
-        lo[node, 0], lo[node, 1], lo[node, 2] = x0, y0, z0
-        hi[node, 0], hi[node, 1], hi[node, 2] = x1, y1, z1
-        hmax[node] = hm
-    for node in range(start.shape[0] - 1, -1, -1):
-        c = child[node]
-        if c < 0:
-            continue
-        for d in range(3):
-            lo[node, d] = min(lo[c, d], lo[c + 1, d])
-            hi[node, d] = max(hi[c, d], hi[c + 1, d])
-        hmax[node] = max(hmax[c], hmax[c + 1])
-
-
-@njit(cache=True)
-def leaf_of_particles(order, start, end, child, n):
-    """The leaf holding each particle, and the list of leaves."""
-    leaf = np.empty(n, np.int64)
-    nleaves = 0
-    for node in range(start.shape[0]):
-        if child[node] < 0:
-            nleaves += 1
-            for k in range(start[node], end[node]):
-                leaf[order[k]] = node
-    leaves = np.empty(nleaves, np.int64)
-    j = 0
-    for node in range(start.shape[0]):
-        if child[node] < 0:
-            leaves[j] = node
-            j += 1
-    return leaf, leaves
-
-
-@njit(inline="always")
-def _gap2(qlo, qhi, lo, hi, node, length, periodic):
-    """Squared distance between the query box and a node's box (minimum image where periodic)."""
-    g2 = 0.0
-    for d in range(3):
-        ca = 0.5 * (qlo[d] + qhi[d])
-        cb = 0.5 * (lo[node, d] + hi[node, d])
-        sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
-        gap = sep - 0.5 * (qhi[d] - qlo[d]) - 0.5 * (hi[node, d] - lo[node, d])
-        if gap > 0.0:
-            g2 += gap * gap
-    return g2
-
-
-@njit(cache=True)
-def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out):
-    """Leaves within reach of the query box (written to ``out`` while there is room); returns the
-    number of particles they hold and the number of leaves."""
-    stack = np.empty(128, np.int64)
-    stack[0] = 0
-    top = 1
-    total = 0
-    nl = 0
-    while top > 0:
-        top -= 1
-        node = stack[top]
-        reach = max(qh, hmax[node])
-        if _gap2(qlo, qhi, lo, hi, node, length, periodic) >= r2 * reach * reach:
-            continue
-        c = child[node]
-        if c >= 0:
-            stack[top] = c
-            stack[top + 1] = c + 1
-            top += 2
-            continue
-        if nl < out.shape[0]:
-            out[nl] = node
-        nl += 1
-        total += end[node] - start[node]
-    return total, nl
-
-
-@njit(parallel=True, cache=True)
-def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, child, lo, hi, hmax, radius,
-                  length, periodic, same_start, same_room, same_index, same_count, cross_start, cross_room,
-                  cross_index, cross_count):
-    """Neighbour rows of the active particles ``act`` among all particles.
-
-    ``group`` delimits runs of ``act`` that share a tree leaf (``act[group[g]:group[g+1]]``); each run
-    walks the tree once with the bounding box of its particles. A particle ``b`` enters the row of
-    slot ``i`` (particle ``a = act[i]``) when :math:`r_{ab} < R\\max(h^q_i, h_b)` (``h_query`` per slot,
-    ``h_src`` per particle): into the same-species row ``same_index[same_start[i]:][:same_count[i]]``,
-    or the other-species row ``cross_*``. A row has room for ``*_room[i]`` entries; the counts are
-    the true numbers even when they exceed it (the caller then searches those slots again with more
-    room).
-    """
-    r2 = radius * radius
-    for g in prange(group.shape[0] - 1):
-        s0, s1 = group[g], group[g + 1]
-        qlo = np.empty(3)
-        qhi = np.empty(3)
-        for d in range(3):
-            qlo[d] = np.inf
-            qhi[d] = -np.inf
-        qh = 0.0
-        for i in range(s0, s1):
-            a = act[i]
-            for d in range(3):
-                qlo[d] = min(qlo[d], pos[a, d])
-                qhi[d] = max(qhi[d], pos[a, d])
-            qh = max(qh, h_query[i])
-        nodes = np.empty(64, np.int64)
-        m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
-        if nl > nodes.shape[0]:
-            nodes = np.empty(nl, np.int64)
-            _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
-        px = np.empty(m)
-        py = np.empty(m)
-        pz = np.empty(m)
-        ph2 = np.empty(m)
-        pid = np.empty(m, np.int64)
-        j = 0
-        for t in range(nl):
-            node = nodes[t]
-            for k in range(start[node], end[node]):
-                b = order[k]
-                px[j] = pos[b, 0]
-                py[j] = pos[b, 1]
-                pz[j] = pos[b, 2]
-                ph2[j] = h_src[b] * h_src[b]
-                pid[j] = b
-                j += 1
-        for i in range(s0, s1):
-            a = act[i]
-            xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-            ha2 = h_query[i] * h_query[i]
-            ta = ptype[a]
-            ns = 0
-            nc = 0
-            o_s, room_s = same_start[i], same_room[i]
-            o_c, room_c = cross_start[i], cross_room[i]
-            for j in range(m):
-                b = pid[j]
-                if b == a:
-                    continue
-                dx = minimum_image(xa - px[j], length[0], periodic[0])
-                dy = minimum_image(ya - py[j], length[1], periodic[1])
-                dz = minimum_image(za - pz[j], length[2], periodic[2])
-                if dx * dx + dy * dy + dz * dz < r2 * max(ha2, ph2[j]):
-                    if ptype[b] == ta:
-                        if ns < room_s:
-                            same_index[o_s + ns] = b
-                        ns += 1
-                    else:
-                        if nc < room_c:
-                            cross_index[o_c + nc] = b
-                        nc += 1
-            same_count[i] = ns
-            cross_count[i] = nc
 
 
 # --------------------------------------------------------------------------- density
@@ -380,54 +202,71 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
 
 
 @njit(cache=True)
-def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count, n):
+def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count, cnt,
+                 where):
     """The inactive particles that appear in active rows, and for each the entries it appears in:
     CSR ``passive``, ``ptr`` over entries ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
-    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order."""
-    cnt = np.zeros(n, np.int64)
-    for i in range(act.shape[0]):
-        if ptype[act[i]] == GAS:
-            for e in range(same_start[i], same_start[i] + same_count[i]):
-                if slot[same_index[e]] < 0:
-                    cnt[same_index[e]] += 1
-        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-            if slot[cross_index[e]] < 0:
-                cnt[cross_index[e]] += 1
+    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order. ``cnt`` (zeros)
+    and ``where`` (-1) are per-particle scratch arrays, left as they were found."""
     npas = 0
     total = 0
-    for b in range(n):
-        if cnt[b] > 0:
-            npas += 1
-            total += cnt[b]
+    for i in range(act.shape[0]):
+        gas = ptype[act[i]] == GAS
+        for e in range(same_start[i], same_start[i] + (same_count[i] if gas else 0)):
+            b = same_index[e]
+            if slot[b] < 0:
+                if cnt[b] == 0:
+                    npas += 1
+                cnt[b] += 1
+                total += 1
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            b = cross_index[e]
+            if slot[b] < 0:
+                if cnt[b] == 0:
+                    npas += 1
+                cnt[b] += 1
+                total += 1
     passive = np.empty(npas, np.int64)
     ptr = np.empty(npas + 1, np.int64)
-    where = np.full(n, -1, np.int64)
     ptr[0] = 0
     u = 0
-    for b in range(n):
-        if cnt[b] > 0:
-            passive[u] = b
-            where[b] = u
-            ptr[u + 1] = ptr[u] + cnt[b]
-            u += 1
+    for i in range(act.shape[0]):  # first appearance order: deterministic
+        gas = ptype[act[i]] == GAS
+        for e in range(same_start[i], same_start[i] + (same_count[i] if gas else 0)):
+            b = same_index[e]
+            if slot[b] < 0 and where[b] < 0:
+                where[b] = u
+                passive[u] = b
+                ptr[u + 1] = ptr[u] + cnt[b]
+                u += 1
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            b = cross_index[e]
+            if slot[b] < 0 and where[b] < 0:
+                where[b] = u
+                passive[u] = b
+                ptr[u + 1] = ptr[u] + cnt[b]
+                u += 1
     e_slot = np.empty(total, np.int64)
     e_pos = np.empty(total, np.int64)
     e_kind = np.empty(total, np.int8)
     fill = ptr[:-1].copy()
     for i in range(act.shape[0]):
-        if ptype[act[i]] == GAS:
-            for e in range(same_start[i], same_start[i] + same_count[i]):
-                b = same_index[e]
-                if slot[b] < 0:
-                    f = fill[where[b]]
-                    e_slot[f], e_pos[f], e_kind[f] = i, e, HYDRO
-                    fill[where[b]] += 1
+        gas = ptype[act[i]] == GAS
+        for e in range(same_start[i], same_start[i] + (same_count[i] if gas else 0)):
+            b = same_index[e]
+            if slot[b] < 0:
+                f = fill[where[b]]
+                e_slot[f], e_pos[f], e_kind[f] = i, e, HYDRO
+                fill[where[b]] += 1
         for e in range(cross_start[i], cross_start[i] + cross_count[i]):
             b = cross_index[e]
             if slot[b] < 0:
                 f = fill[where[b]]
                 e_slot[f], e_pos[f], e_kind[f] = i, e, DRAG
                 fill[where[b]] += 1
+    for u in range(npas):
+        cnt[passive[u]] = 0
+        where[passive[u]] = -1
     return passive, ptr, e_slot, e_pos, e_kind
 
 
@@ -440,7 +279,8 @@ def _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt):
 
 @njit(parallel=True, cache=True)
 def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_dt, same_start, same_index, same_count,
-                pair_s, cross_start, cross_index, cross_count, pair_f, acc_ext, length, periodic, close, open_):
+                pair_s, cross_start, cross_index, cross_count, pair_f, acc_ext, ext_old, ext_new, last_ext, length,
+                periodic, close, open_):
     """Closing and opening half kicks of the active particles.
 
     A pair was last evaluated (and opened with half its expected step, :math:`\\min(\\Delta t_a, \\Delta t_b)/2`
@@ -448,14 +288,13 @@ def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_d
     it is closed with the time elapsed since then minus that opening weight -- half the pair step when
     the step ran its full length, less when a particle was woken early -- and opened again with half
     its new step (``tau_new``). The external acceleration ``acc_ext`` (per slot) is treated alike
-    with the particle's own steps. Both particles of a pair get the same weights: momentum is
-    conserved to round-off whatever the steps.
+    with the particle's own external-force steps (``ext_old``, ``ext_new``, ``last_ext``). Both
+    particles of a pair get the same weights: momentum is conserved to round-off whatever the steps.
     """
     for i in prange(act.shape[0]):
         a = act[i]
-        elapsed = (tick - last_tick[a]) * tick_dt
-        wc = elapsed - 0.5 * tau_old[a]
-        wo = 0.5 * tau_new[a]
+        wc = (tick - last_ext[a]) * tick_dt - 0.5 * ext_old[a]
+        wo = 0.5 * ext_new[a]
         c0 = wc * acc_ext[i, 0]
         c1 = wc * acc_ext[i, 1]
         c2 = wc * acc_ext[i, 2]
@@ -518,6 +357,18 @@ def kick_passive(passive, ptr, e_slot, e_pos, e_kind, act, pos, mass, tau_old, t
         vel[b, 0] += kx
         vel[b, 1] += ky
         vel[b, 2] += kz
+
+
+@njit(parallel=True, cache=True)
+def kick_external(ext, acc_ext, ext_old, ext_new, last_ext, tick, tick_dt, vel):
+    """Closing and opening kicks by the external acceleration ``acc_ext`` (per entry of ``ext``) of
+    particles whose external-force step ends at ``tick`` but not their SPH step (:func:`kick_active`)."""
+    for i in prange(ext.shape[0]):
+        a = ext[i]
+        w = (tick - last_ext[a]) * tick_dt - 0.5 * ext_old[a] + 0.5 * ext_new[a]
+        vel[a, 0] += w * acc_ext[i, 0]
+        vel[a, 1] += w * acc_ext[i, 1]
+        vel[a, 2] += w * acc_ext[i, 2]
 
 
 @njit(cache=True)
