@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import inspect
 import sys
 import time
 from pathlib import Path
@@ -18,6 +19,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--list", action="store_true", help="list the figures and stop")
     p.add_argument("-o", "--output", default="figures", metavar="DIR", help="output directory (default: figures)")
     p.add_argument("--full", action="store_true", help="thesis-scale resolution instead of the quick default")
+    p.add_argument("--from", dest="runs", action="append", metavar="RUN",
+                   help="use this run directory instead of running (figures made from runs; repeat for several)")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -34,12 +37,20 @@ def main(args: argparse.Namespace) -> int:
     if not names:
         raise UserError("reproduce: name at least one figure, or --all (see: dustygas reproduce --list)")
     specs = [get_figure(n) for n in names]  # validate every name before writing anything
+    runs = getattr(args, "runs", None)
+    if runs:
+        for spec in specs:
+            if "runs" not in inspect.signature(spec.function).parameters:
+                raise UserError(f"reproduce --from: {spec.name} is not made from a run directory")
+        for run in runs:
+            if not Path(run).is_dir():
+                raise UserError(f"reproduce --from {run}: no such run directory")
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise UserError(f"--output {out}: exists and is not a directory")
     out.mkdir(parents=True, exist_ok=True)
     for spec in specs:
         t0 = time.perf_counter()
-        paths = spec.function(out, quick=not args.full)
+        paths = spec.function(out, quick=not args.full, **({"runs": runs} if runs else {}))
         print(f"{spec.name}: {', '.join(str(p) for p in paths)} ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
     return 0

@@ -217,15 +217,19 @@ def merge_particles(*sets: ParticleSet) -> ParticleSet:
     return ParticleSet(**out, pid=np.arange(n, dtype=np.int64), extra=extra)
 
 
-def balance_rotation(pos: np.ndarray, vel: np.ndarray, acc: np.ndarray, select: np.ndarray) -> None:
+def balance_rotation(pos: np.ndarray, vel: np.ndarray, acc: np.ndarray, select: np.ndarray) -> int:
     """Set the particles ``select`` on circular orbits that balance the radial acceleration they feel,
-    :math:`v_\\phi = \\sqrt{-R\\,a_R}` (in place; radial and vertical velocities zeroed)."""
-    R, _ = cylindrical(pos[select])
-    c, s = pos[select, 0] / R, pos[select, 1] / R
-    aR = acc[select, 0] * c + acc[select, 1] * s
-    if np.any(aR >= 0):
-        raise SetupError("disk: a particle feels no inward force; cannot balance its rotation")
-    vphi = np.sqrt(-R * aR)
-    vel[select, 0] = -vphi * s
-    vel[select, 1] = vphi * c
-    vel[select, 2] = 0.0
+    :math:`v_\\phi = \\sqrt{-R\\,a_R}` (in place; radial and vertical velocities zeroed). A particle
+    pushed outward (:math:`a_R \\ge 0`, possible at the edges of a coarse disk) keeps its velocity;
+    returns how many did."""
+    idx = np.flatnonzero(select)
+    R, _ = cylindrical(pos[idx])
+    c, s = pos[idx, 0] / R, pos[idx, 1] / R
+    aR = acc[idx, 0] * c + acc[idx, 1] * s
+    ok = aR < 0
+    vphi = np.sqrt(-R[ok] * aR[ok])
+    i = idx[ok]
+    vel[i, 0] = -vphi * s[ok]
+    vel[i, 1] = vphi * c[ok]
+    vel[i, 2] = 0.0
+    return int((~ok).sum())
