@@ -111,6 +111,7 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
         pa = packed[a]
         xa, ya, za = pa[_X], pa[_Y], pa[_Z]
         vxa, vya, vza = pa[_VX], pa[_VY], pa[_VZ]
+        wrap = periodic[0] or periodic[1] or periodic[2]
         hinv_a = pa[_HINV]
         gnorm_a = pa[_GRADNORM]
         cs_a = pa[_CS]
@@ -120,9 +121,13 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
         for k in range(same_count[i]):
             b = same_index[o + k]
             pb = packed[b]
-            dx = minimum_image(xa - pb[_X], length[0], periodic[0])
-            dy = minimum_image(ya - pb[_Y], length[1], periodic[1])
-            dz = minimum_image(za - pb[_Z], length[2], periodic[2])
+            dx = xa - pb[_X]
+            dy = ya - pb[_Y]
+            dz = za - pb[_Z]
+            if wrap:
+                dx = minimum_image(dx, length[0], periodic[0])
+                dy = minimum_image(dy, length[1], periodic[1])
+                dz = minimum_image(dz, length[2], periodic[2])
             r2 = dx * dx + dy * dy + dz * dz
             hinv_b = pb[_HINV]
             if r2 * hinv_a * hinv_a >= r2max and r2 * hinv_b * hinv_b >= r2max:
@@ -201,73 +206,52 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
 # --------------------------------------------------------------------------- kicks
 
 
-@njit(cache=True)
-def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count, cnt,
-                 where):
-    """The inactive particles that appear in active rows, and for each the entries it appears in:
-    CSR ``passive``, ``ptr`` over entries ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
-    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order. ``cnt`` (zeros)
-    and ``where`` (-1) are per-particle scratch arrays, left as they were found."""
-    npas = 0
-    total = 0
-    for i in range(act.shape[0]):
-        gas = ptype[act[i]] == GAS
-        for e in range(same_start[i], same_start[i] + (same_count[i] if gas else 0)):
-            b = same_index[e]
-            if slot[b] < 0:
-                if cnt[b] == 0:
-                    npas += 1
-                cnt[b] += 1
-                total += 1
+@njit(parallel=True, cache=True)
+def _reverse_entries(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
+    """Every row entry whose neighbour is inactive: (neighbour, slot, position in the buffer, kind), in slot order."""
+    n = act.shape[0]
+    counts = np.zeros(n + 1, np.int64)
+    for i in prange(n):
+        c = 0
+        if ptype[act[i]] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                c += slot[same_index[e]] < 0
         for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-            b = cross_index[e]
-            if slot[b] < 0:
-                if cnt[b] == 0:
-                    npas += 1
-                cnt[b] += 1
-                total += 1
-    passive = np.empty(npas, np.int64)
-    ptr = np.empty(npas + 1, np.int64)
-    ptr[0] = 0
-    u = 0
-    for i in range(act.shape[0]):  # first appearance order: deterministic
-        gas = ptype[act[i]] == GAS
-        for e in range(same_start[i], same_start[i] + (same_count[i] if gas else 0)):
-            b = same_index[e]
-            if slot[b] < 0 and where[b] < 0:
-                where[b] = u
-                passive[u] = b
-                ptr[u + 1] = ptr[u] + cnt[b]
-                u += 1
-        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-            b = cross_index[e]
-            if slot[b] < 0 and where[b] < 0:
-                where[b] = u
-                passive[u] = b
-                ptr[u + 1] = ptr[u] + cnt[b]
-                u += 1
+            c += slot[cross_index[e]] < 0
+        counts[i + 1] = c
+    offset = np.cumsum(counts)
+    total = offset[n]
+    who = np.empty(total, np.int64)
     e_slot = np.empty(total, np.int64)
     e_pos = np.empty(total, np.int64)
     e_kind = np.empty(total, np.int8)
-    fill = ptr[:-1].copy()
-    for i in range(act.shape[0]):
-        gas = ptype[act[i]] == GAS
-        for e in range(same_start[i], same_start[i] + (same_count[i] if gas else 0)):
-            b = same_index[e]
-            if slot[b] < 0:
-                f = fill[where[b]]
-                e_slot[f], e_pos[f], e_kind[f] = i, e, HYDRO
-                fill[where[b]] += 1
+    for i in prange(n):
+        f = offset[i]
+        if ptype[act[i]] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                b = same_index[e]
+                if slot[b] < 0:
+                    who[f], e_slot[f], e_pos[f], e_kind[f] = b, i, e, HYDRO
+                    f += 1
         for e in range(cross_start[i], cross_start[i] + cross_count[i]):
             b = cross_index[e]
             if slot[b] < 0:
-                f = fill[where[b]]
-                e_slot[f], e_pos[f], e_kind[f] = i, e, DRAG
-                fill[where[b]] += 1
-    for u in range(npas):
-        cnt[passive[u]] = 0
-        where[passive[u]] = -1
-    return passive, ptr, e_slot, e_pos, e_kind
+                who[f], e_slot[f], e_pos[f], e_kind[f] = b, i, e, DRAG
+                f += 1
+    return who, e_slot, e_pos, e_kind
+
+
+def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
+    """The inactive particles that appear in active rows (``passive``, ascending), and for each the
+    entries it appears in: CSR ``ptr`` over ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
+    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order (a stable sort)."""
+    who, e_slot, e_pos, e_kind = _reverse_entries(act, slot, ptype, same_start, same_index, same_count, cross_start,
+                                                  cross_index, cross_count)
+    order = np.argsort(who, kind="stable")
+    passive, counts = np.unique(who[order], return_counts=True)
+    ptr = np.zeros(passive.size + 1, np.int64)
+    np.cumsum(counts, out=ptr[1:])
+    return passive, ptr, e_slot[order], e_pos[order], e_kind[order]
 
 
 @njit(inline="always")
@@ -371,24 +355,26 @@ def kick_external(ext, acc_ext, ext_old, ext_new, last_ext, tick, tick_dt, vel):
         vel[a, 2] += w * acc_ext[i, 2]
 
 
-@njit(cache=True)
+@njit(parallel=True, cache=True)
 def limit_levels(act, ptype, level, same_start, same_index, same_count, slot, delta, wake):
     """Time-step limiter (Saitoh & Makino 2009): an active gas particle takes a level at least
     ``max(neighbour levels) - delta``; an inactive gas neighbour more than ``delta`` levels slower
     than an active one is marked in ``wake`` (to be activated at the next sub-step). In place."""
-    for i in range(act.shape[0]):
+    new = np.empty(act.shape[0], np.int64)
+    for i in prange(act.shape[0]):
         a = act[i]
-        if ptype[a] != GAS:
-            continue
         top = level[a]
-        for e in range(same_start[i], same_start[i] + same_count[i]):
-            top = max(top, level[same_index[e]])
-        level[a] = max(level[a], top - delta)
-    for i in range(act.shape[0]):
+        if ptype[a] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                top = max(top, level[same_index[e]])
+        new[i] = max(level[a], top - delta)
+    for i in prange(act.shape[0]):
+        level[act[i]] = new[i]
+    for i in prange(act.shape[0]):
         a = act[i]
         if ptype[a] != GAS:
             continue
         for e in range(same_start[i], same_start[i] + same_count[i]):
             b = same_index[e]
-            if slot[b] < 0 and level[b] < level[a] - delta:
-                wake[b] = True
+            if slot[b] < 0 and level[b] < new[i] - delta:
+                wake[b] = True  # every writer writes True: the same result in any order

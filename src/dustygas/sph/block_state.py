@@ -61,8 +61,6 @@ class BlockState:
         self._packed = np.zeros((n, NPACK))
         self._dtable = None
         self._slot = np.full(n, -1, np.int64)
-        self._count = np.zeros(n, np.int64)
-        self._where = np.full(n, -1, np.int64)
         self._h_src = self.particles.h.copy()
 
     @property

@@ -273,7 +273,7 @@ class BlockStepEngine(BlockState):
             self.P[gas], self.cs[gas] = P, cs
         self._slot[act] = np.arange(act.size)
         passive, ptr, e_slot, e_pos, e_kind = reverse_rows(act, self._slot, p.ptype, same_o, same_i, same_n, cross_o,
-                                                           cross_i, cross_n, self._count, self._where)
+                                                           cross_i, cross_n)
         rows = np.concatenate([act, passive])
         vel_pred = self.v_sync[rows] + ((tick - self.last_tick[rows]) * tick_dt)[:, None] * self.acc[rows]
         acc = np.zeros((n, 3))
