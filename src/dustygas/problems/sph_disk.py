@@ -42,7 +42,7 @@ from ..sph import Box, ExternalForces
 from ..sph.disk import DiskModel, balance_rotation, cylindrical, merge_particles, ring_particles
 from ..sph.disk_diagnostics import RING, TRACK, DiskDiagnostics
 from ..sph.dust.drag_law import DragLaw
-from ..sph.dust.two_fluid import DRAG_FORMS, DRAG_KERNELS, TwoFluidOptions
+from ..sph.dust.two_fluid import DRAG_FORMS, DRAG_INTEGRATIONS, DRAG_KERNELS, TwoFluidOptions
 from ..sph.kernels import get_kernel
 from ..sph.particles import DUST, GAS
 from ..sph.schema import SPH_SCHEMA, options_from_config
@@ -113,6 +113,8 @@ class SPHDisk(Problem):
             "drag_kernel": Param("gas", "drag kernel D_ai(h_a) of the gas particle (eq. 3.19) or the pair average",
                                  choices=DRAG_KERNELS),
             "c_drag": Param(0.9, "explicit-drag time-step factor dt <= c_drag t_s", min=0.0, min_open=True),
+            "integration": Param("explicit", "drag in time: explicit (dt <= c_drag t_s, eq. 2.15) or the pairwise "
+                                 "exponential average over the pair step (implicit)", choices=DRAG_INTEGRATIONS),
         },
         "split": {
             "enabled": Param(False, "split the particles of a radial band into eight (thesis §3.3.3)"),
@@ -190,7 +192,7 @@ class SPHDisk(Problem):
         drag = None
         if rings:
             drag = TwoFluidOptions(drag=DragLaw("epstein", grain_density=rho_grain), form=dust.form,
-                                   reconstruction="none", integration="explicit", c_drag=dust.c_drag, heating=False,
+                                   reconstruction="none", integration=dust.integration, c_drag=dust.c_drag, heating=False,
                                    drag_kernel=dust.drag_kernel)
         st = cfg.steps
         steps = BlockStepOptions(individual=st.individual, max_level=st.max_level,

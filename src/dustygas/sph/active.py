@@ -28,12 +28,12 @@ from numba import njit, prange
 from .density import solve_one_smoothing_length
 from .dust.two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pair
 from .forces import pressure_pair
-from .kernels import kernel_dshape
+from .kernels import kernel_dshape, kernel_shape
 from .neighbours import minimum_image
 from .particles import GAS
 from .viscosity import signal_speed, viscous_pair
 
-__all__ = ["active_densities", "pack_hydro", "active_hydro", "active_drag", "reverse_rows", "kick_active",
+__all__ = ["active_densities", "pack_hydro", "active_hydro", "active_drag", "gas_at_dust", "reverse_rows", "kick_active",
            "kick_passive", "kick_external", "limit_levels", "HYDRO", "DRAG", "NPACK"]
 
 HYDRO = 0
@@ -169,13 +169,15 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
 
 @njit(parallel=True, cache=True)
 def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape, ndim, length, periodic, c_const,
-                projected, gas_kernel, pair_f, acc, tmin):
+                projected, gas_kernel, tau, implicit, pair_f, acc, tmin):
     """Two-fluid drag (thesis eqs. 3.18-3.19, :func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`) on the
     active particles from their other-species rows; ``table`` holds one row per particle (gas and dust).
 
     ``pair_f[e]`` receives the acceleration of :math:`a` due to row entry ``e`` (the partner's share is
     :math:`-m_a/m_j` times it), ``acc`` the sum and ``tmin`` the smallest pair stopping time (per slot).
     ``gas_kernel``: the drag kernel uses only the gas particle's smoothing length (eq. 3.19 as written).
+    ``implicit``: the pairwise exponential average over the pair step :math:`\\min(\\tau_a, \\tau_j)` (``tau`` per
+    particle), with the non-drag accelerations in ``table``'s last three columns.
     """
     grad = np.zeros((1, 9))
     for i in prange(act.shape[0]):
@@ -188,8 +190,9 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
         o = cross_start[i]
         for k in range(cross_count[i]):
             j = cross_index[o + k]
+            dt_pair = min(tau[a], tau[j]) if implicit else 0.0
             fx, fy, fz, _, tp = drag_pair(table, grad, table, grad, a, j, shape, ndim, length, periodic, c_const,
-                                          projected, False, False, 0.0, False, side)
+                                          projected, False, False, dt_pair, False, side)
             pair_f[o + k, 0] = fx
             pair_f[o + k, 1] = fy
             pair_f[o + k, 2] = fz
@@ -201,6 +204,31 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
         acc[i, 1] = ay
         acc[i, 2] = az
         tmin[i] = tm
+
+
+@njit(parallel=True, cache=True)
+def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cross_count, shape, norm, ndim, rho_out,
+                cs_out):
+    """Gas density and sound speed at the active dust particles from their gas neighbours, with the
+    gas particles' kernels: :math:`\\rho_g = \\sum_a m_a W(r, h_a)` and the normalised interpolant
+    :math:`c_s = \\sum_a (m_a/\\rho_a) c_{s,a} W / \\sum_a (m_a/\\rho_a) W` (zero without neighbours)."""
+    for i in prange(act.shape[0]):
+        d = act[i]
+        rs = cw = ww = 0.0
+        if ptype[d] != GAS:
+            for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+                a = cross_index[e]
+                dx = pos[d, 0] - pos[a, 0]
+                dy = pos[d, 1] - pos[a, 1]
+                dz = pos[d, 2] - pos[a, 2]
+                hinv = 1.0 / h[a]
+                w = norm * hinv**ndim * kernel_shape(shape, math.sqrt(dx * dx + dy * dy + dz * dz) * hinv)[0]
+                rs += mass[a] * w
+                v = mass[a] / rho[a] * w
+                cw += v * cs[a]
+                ww += v
+        rho_out[i] = rs
+        cs_out[i] = cw / ww if ww > 0.0 else 0.0
 
 
 # --------------------------------------------------------------------------- kicks

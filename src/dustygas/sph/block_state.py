@@ -24,8 +24,8 @@ __all__ = ["BlockState"]
 
 #: per-particle arrays: derived fields of the last evaluation, vectors, and the step bookkeeping
 FIELDS = ("rho", "omega", "P", "cs", "divv", "curlv", "vsig", "tmin", "dt_want", "dt_want_ext", "phi", "_tau",
-          "_tau_ext")
-VECTORS = ("acc", "v_sync", "pending")
+          "_tau_ext", "_pending_size")
+VECTORS = ("acc", "acc_other", "v_sync", "pending")
 INTEGERS = ("level", "ext_level", "last_tick", "last_ext", "_n_same", "_n_cross")
 
 
@@ -61,6 +61,7 @@ class BlockState:
         self._packed = np.zeros((n, NPACK))
         self._dtable = None
         self._slot = np.full(n, -1, np.int64)
+        self._size_rate = np.zeros(n)
         self._h_src = self.particles.h.copy()
 
     @property

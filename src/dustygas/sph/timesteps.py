@@ -60,11 +60,13 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
-from .active import (NPACK, active_densities, active_drag, active_hydro, kick_active, kick_external, kick_passive,
-                     limit_levels, pack_hydro, reverse_rows)
+from ..physics.drag import epstein_stopping_time
+from .active import (NPACK, active_densities, active_drag, active_hydro, gas_at_dust, kick_active, kick_external,
+                     kick_passive, limit_levels, pack_hydro, reverse_rows)
 from .active_search import DEAD, active_search, drift_and_accrete, leaf_of_particles, refit_tree, schedule
 from .block_state import BlockState
 from .density import H_NEEDS_NEIGHBOURS, H_NOT_CONVERGED
+from .dust.grain_size import GrainGrowth, enforce_minimum_size
 from .dust.two_fluid import TwoFluidOptions
 from .dust.two_fluid_kernels import pack
 from .engine import PARALLEL_CHUNK, SPHOptions
@@ -126,6 +128,11 @@ class BlockStepEngine(BlockState):
         and the viscosity constant (``switch = "none"``).
     drag
         Two-fluid drag between the ``DUST`` and ``GAS`` particles (explicit, no reconstruction).
+    growth
+        Local growth and fragmentation of the dust particles' grains (thesis eqs. 3.6-3.7; Epstein
+        drag): :math:`ds/dt` from the dust density and the gas density and sound speed interpolated at
+        each dust particle, with its own orbital frequency, integrated like a velocity (closing and
+        opening half steps at each activation) and limiting the step to :math:`C_{\\rm size}\\,s/|ds/dt|`.
     steps
         :class:`BlockStepOptions`.
     diagnostics
@@ -136,17 +143,20 @@ class BlockStepEngine(BlockState):
 
     def __init__(self, particles: ParticleSet, box: Box, eos: EquationOfState, options: SPHOptions = SPHOptions(),
                  external: ExternalForces = ExternalForces(), drag: TwoFluidOptions | None = None,
-                 steps: BlockStepOptions = BlockStepOptions(), diagnostics: tuple = ()):
+                 growth: GrainGrowth | None = None, steps: BlockStepOptions = BlockStepOptions(),
+                 diagnostics: tuple = ()):
         if eos.evolves_energy:
             raise SetupError("individual time steps: only (locally) isothermal gas is supported")
         if options.switch != "none":
             raise SetupError("individual time steps: use sph.switch = none (constant artificial viscosity)")
         if options.force == "gasoline2" and options.gasoline2_f != "gradh":
             raise SetupError("individual time steps: the GASOLINE2 force needs gasoline2_f = gradh")
-        if drag is not None and (drag.reconstruction != "none" or drag.integration != "explicit"):
-            raise SetupError("individual time steps: two-fluid drag must be explicit without reconstruction "
-                             "(dust.reconstruction = none, dust.integration = explicit)")
+        if drag is not None and drag.reconstruction != "none":
+            raise SetupError("individual time steps: two-fluid drag without reconstruction (dust.reconstruction = none)")
+        if growth is not None and (drag is None or not drag.drag.needs_sizes or not external.star_gm):
+            raise SetupError("grain growth needs Epstein drag (grain sizes) and a star (orbital frequencies)")
         self.box, self.eos, self.options, self.external, self.drag = box, eos, options, external, drag
+        self.growth = growth
         self.steps = steps
         self.diagnostics = tuple(diagnostics)
         self.kernel = get_kernel(options.kernel, box.ndim)
@@ -275,7 +285,13 @@ class BlockStepEngine(BlockState):
         passive, ptr, e_slot, e_pos, e_kind = reverse_rows(act, self._slot, p.ptype, same_o, same_i, same_n, cross_o,
                                                            cross_i, cross_n)
         rows = np.concatenate([act, passive])
-        vel_pred = self.v_sync[rows] + ((tick - self.last_tick[rows]) * tick_dt)[:, None] * self.acc[rows]
+        elapsed = ((tick - self.last_tick[rows]) * tick_dt)[:, None]
+        if self._implicit:  # stiff drag: predict with the other forces; dust as it is (kicked by every pair)
+            vel_pred = self.v_sync[rows] + elapsed * self.acc_other[rows]
+            dust_rows = p.ptype[rows] == DUST
+            vel_pred[dust_rows] = p.vel[rows[dust_rows]]
+        else:
+            vel_pred = self.v_sync[rows] + elapsed * self.acc[rows]
         acc = np.zeros((n, 3))
         pair_s = np.zeros(same_i.size)
         if gas.size:
@@ -285,26 +301,67 @@ class BlockStepEngine(BlockState):
             active_hydro(act, p.ptype, self._packed, same_o, same_i, same_n, k.shape, k.radius, length, per,
                          FORCE_FORMS[o.force], o.beta, pair_s, acc, divv, curlv, vsig)
             self.divv[act], self.curlv[act], self.vsig[act] = divv, curlv, vsig
-        pair_f = np.zeros((cross_i.size, 3))
-        if self.drag is not None:
-            tmin = np.empty(n)
-            d = self.drag
-            c0 = d.drag.pair_factors(np.ones(1), np.ones(1), np.ones(1))[2]
-            acc_d = np.empty((n, 3))
-            active_drag(act, p.ptype, self._drag_table(rows, vel_pred), cross_o, cross_i, cross_n, k.shape, k.ndim,
-                        length, per, c0, d.form == "projected", d.drag_kernel == "gas", pair_f, acc_d, tmin)
-            acc += acc_d
-            self.tmin[act] = tmin
         acc_ext = self._external(act)
+        self.acc_other[act] = acc + acc_ext
+        ev = (act, same_o, same_i, same_n, pair_s, cross_o, cross_i, cross_n, np.zeros((cross_i.size, 3)), acc_ext,
+              passive, ptr, e_slot, e_pos, e_kind)
+        self._rows = (rows, vel_pred)
+        if self.drag is not None and not self._implicit:
+            acc += self._drag(ev, None)
+        if self.growth is not None:
+            self._grow(act, cross_o, cross_i, cross_n)
         if not np.isfinite(acc).all():
             bad = act[~np.isfinite(acc).all(axis=1)]
             raise SimulationError(f"non-finite acceleration for {bad.size} particles at time={self.t:.6g}",
                                   state={"particles": bad, "position": p.pos[bad]})
         self.dt_want[act] = self._wanted_steps(act, acc)
+        if self.growth is not None:
+            d = act[p.ptype[act] == DUST]
+            self.dt_want[d] = np.minimum(self.dt_want[d], self.growth.timesteps(p.extra["grain_size"][d],
+                                                                                 self._size_rate[d]))
         self.acc[act] = acc + acc_ext
         self._slot[act] = -1
-        return (act, same_o, same_i, same_n, pair_s, cross_o, cross_i, cross_n, pair_f, acc_ext, passive, ptr, e_slot,
-                e_pos, e_kind)
+        return ev
+
+    @property
+    def _implicit(self) -> bool:
+        return self.drag is not None and self.drag.integration == "implicit"
+
+    def _drag(self, ev, tau_new) -> np.ndarray:
+        """Drag pair forces of the active particles into ``ev``'s pair table; returns their sum per slot.
+        Implicit drag (``tau_new`` given) averages each pair over its coming pair step."""
+        p, k, d = self.particles, self.kernel, self.drag
+        _, length, per = self._box_arrays
+        act, cross_o, cross_i, cross_n, pair_f = ev[0], ev[5], ev[6], ev[7], ev[8]
+        rows, vel_pred = self._rows
+        n = act.size
+        tmin, acc_d = np.empty(n), np.empty((n, 3))
+        c0 = d.drag.pair_factors(np.ones(1), np.ones(1), np.ones(1))[2]
+        other = self.acc_other[rows] if tau_new is not None else np.zeros((rows.size, 0))
+        tau = tau_new if tau_new is not None else self._tau
+        active_drag(act, p.ptype, self._drag_table(rows, vel_pred, other), cross_o, cross_i, cross_n, k.shape,
+                    k.ndim, length, per, c0, d.form == "projected", d.drag_kernel == "gas", tau, tau_new is not None,
+                    pair_f, acc_d, tmin)
+        self.tmin[act] = tmin
+        return acc_d
+
+    def _grow(self, act, cross_o, cross_i, cross_n) -> None:
+        """Growth rates of the active dust particles' grains (the ``growth`` parameter)."""
+        p, k, g = self.particles, self.kernel, self.growth
+        rho_g, cs_g = np.empty(act.size), np.empty(act.size)
+        gas_at_dust(act, p.ptype, p.pos, p.mass, p.h, self.rho, self.cs, cross_o, cross_i, cross_n, k.shape, k.norm,
+                    k.ndim, rho_g, cs_g)
+        dust = p.ptype[act] == DUST
+        d = act[dust]
+        size = p.extra["grain_size"][d]
+        coupled = rho_g[dust] > 0
+        R = np.hypot(p.pos[d, 0], p.pos[d, 1])
+        omega = np.sqrt(self.external.star_gm / R**3)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ts = epstein_stopping_time(size, self.drag.drag.grain_density, np.where(coupled, rho_g[dust], 1.0),
+                                       np.where(coupled, cs_g[dust], 1.0))
+            rate = np.where(coupled, g.rate(size, self.rho[d], ts, cs_g[dust], omega), 0.0)
+        self._size_rate[d] = rate
 
     def _external(self, sel) -> np.ndarray:
         """External accelerations of the particles ``sel``, their potentials and wanted external steps."""
@@ -320,11 +377,12 @@ class BlockStepEngine(BlockState):
             self.dt_want_ext[sel] = np.inf
         return acc_ext
 
-    def _drag_table(self, rows, vel_pred) -> np.ndarray:
+    def _drag_table(self, rows, vel_pred, other) -> np.ndarray:
         """The drag pair table (:func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`) with current rows."""
         p, k = self.particles, self.kernel
-        if self._dtable is None or self._dtable.shape[0] != len(p):
-            self._dtable = np.zeros((len(p), 11))
+        width = 11 + other.shape[1]
+        if self._dtable is None or self._dtable.shape != (len(p), width):
+            self._dtable = np.zeros((len(p), width))
         law = self.drag.drag
         is_gas = p.ptype[rows] == GAS
         d = rows[~is_gas]
@@ -334,7 +392,8 @@ class BlockStepEngine(BlockState):
         kk[is_gas], kk[~is_gas] = kg, kd
         cnorm = k.norm_drag if self.drag.form == "projected" else k.norm
         hinv = 1.0 / p.h[rows]
-        self._dtable[rows] = pack(p.pos[rows], vel_pred, p.mass[rows], hinv, cnorm * hinv**k.ndim, self.rho[rows], kk)
+        self._dtable[rows] = pack(p.pos[rows], vel_pred, p.mass[rows], hinv, cnorm * hinv**k.ndim, self.rho[rows], kk,
+                                  other)
         return self._dtable
 
     def _wanted_steps(self, act, acc) -> np.ndarray:
@@ -349,7 +408,7 @@ class BlockStepEngine(BlockState):
             dt = o.c_force * np.sqrt(h / amag)
             gas = p.ptype[act] == GAS
             dt = np.where(gas, np.minimum(dt, o.c_cour * h / np.where(gas, self.vsig[act], 1.0)), dt)
-            if self.drag is not None:
+            if self.drag is not None and not self._implicit:
                 dt = np.where(gas, dt, np.minimum(dt, self.drag.c_drag * self.tmin[act]))
         return dt
 
@@ -421,9 +480,10 @@ class BlockStepEngine(BlockState):
             e_pos, e_kind = ev
         p = self.particles
         _, length, per = self._box_arrays
-        steps = self.dt_block * np.ldexp(1.0, -self.level[act])
         tau_new = self._tau.copy()
-        tau_new[act] = steps
+        tau_new[act] = self.dt_block * np.ldexp(1.0, -self.level[act])
+        if self._implicit:  # the drag averaged over the coming pair steps, now that they are known
+            self.acc[act] += self._drag(ev, tau_new)
         both = np.concatenate([act, ext_only])
         ext_new = self._tau_ext.copy()
         ext_new[both] = self.dt_block * np.ldexp(1.0, -self.ext_level[both])
@@ -437,6 +497,16 @@ class BlockStepEngine(BlockState):
                          tick, tick_dt, pair_s, pair_f, length, per, p.vel)
         if ext_only.size:
             kick_external(ext_only, acc_ext_only, self._tau_ext, ext_new, self.last_ext, tick, tick_dt, p.vel)
+        if self.growth is not None:  # grain sizes, integrated like the velocities
+            d = act[p.ptype[act] == DUST]
+            size = p.extra["grain_size"]
+            size[d] += ((tick - self.last_tick[d]) * tick_dt - 0.5 * self._tau[d]) * self._size_rate[d]
+            opening = 0.5 * tau_new[d] * self._size_rate[d]
+            if final:
+                self._pending_size[d] = opening
+            else:
+                size[d] += opening
+            enforce_minimum_size(size, self.growth.min_size)
         p.vel[act] += close
         self.v_sync[act] = p.vel[act]
         if final:
@@ -457,6 +527,7 @@ class BlockStepEngine(BlockState):
         self.last_tick[:] = 0
         self.last_ext[:] = 0
         self.pending[:] = 0.0
+        self._pending_size[:] = 0.0
         self.v_sync = self.particles.vel.copy()
         self._h_src = self.particles.h.copy()
         ev = self._evaluate(np.arange(n), 0, 0.0, rebuild=True)
@@ -506,6 +577,10 @@ class BlockStepEngine(BlockState):
         p = self.particles
         p.vel += self.pending
         self.pending[:] = 0.0
+        if self.growth is not None:
+            p.extra["grain_size"] += self._pending_size
+            enforce_minimum_size(p.extra["grain_size"], self.growth.min_size)
+            self._pending_size[:] = 0.0
         top = np.int64(1) << TICKS_LOG2
         tick_dt = self.dt_block / float(top)
         tick = np.int64(0)
