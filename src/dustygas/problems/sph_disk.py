@@ -44,7 +44,7 @@ from ..sph.disk_diagnostics import RING, TRACK, DiskDiagnostics
 from ..sph.dust.drag_law import DragLaw
 from ..sph.dust.two_fluid import DRAG_FORMS, DRAG_INTEGRATIONS, DRAG_KERNELS, TwoFluidOptions
 from ..sph.kernels import get_kernel
-from ..sph.particles import DUST, GAS
+from ..sph.particles import GAS
 from ..sph.schema import SPH_SCHEMA, options_from_config
 from ..sph.splitting import split_band
 from ..sph.timesteps import BlockStepEngine, BlockStepOptions
