@@ -32,17 +32,19 @@ is the smaller of the two, so a strongly coupled dust particle, limited by
 :math:`\\Delta t \\le C_{\\rm drag} t_s` (eq. 2.15), takes short steps and kicks its gas neighbours at
 that cadence, but the gas keeps its own steps.
 
-**Levels.** At each activation a particle moves to a faster level at once, to a slower one only by
-one level and only where the current time is a multiple of the slower step (Makino 1991). The
-limiter of Saitoh & Makino (2009) keeps neighbouring gas particles within ``limiter`` levels: slower
-neighbours of an active particle are *woken* at the next sub-step (their step ends early; the
-elapsed-time closing above keeps every pair consistent). At the end of a block every particle is
-active: the next block length is the largest wanted step (at most ``dt_max``) and every level is
-chosen afresh. The velocities held between run-loop steps are the synchronised ones; the opening
-kicks of the next block are kept in a *pending* array, part of the checkpoint, so a restart is
-bit-identical. Particles that come within the star's accretion radius are accreted at once
-(mass, momentum and angular momentum go to the star; their pairs were opened for both particles
-and are never closed) and removed at the end of the block.
+**Levels.** At each activation a particle moves to a faster level at once and to a slower one by one
+level at a time (Makino 1991); it is next active at the next multiple of its step, so a step that
+begins between two multiples (after a wake-up or a slow-down) is shortened to the next one, and the
+particles of a level are active together with every faster one. The limiter of Saitoh & Makino
+(2009) keeps neighbouring gas particles within ``limiter`` levels: slower neighbours of an active
+particle are *woken* at the next sub-step (their step ends early; the elapsed-time closing above
+keeps every pair consistent). At the end of a block every particle is active: the next block length
+is the largest wanted step (at most ``dt_max``) and every level is chosen afresh. The velocities held
+between run-loop steps are the synchronised ones; the opening kicks of the next block are kept in a
+*pending* array, part of the checkpoint, so a restart is bit-identical. Particles that come within
+the star's accretion radius are accreted at once (mass, momentum and angular momentum go to the
+star; their pairs were opened for both particles and are never closed) and removed at the end of
+the block.
 
 **Costs.** A sub-step costs :math:`O(|S|)` for the active set :math:`S` plus an :math:`O(N)` drift,
 schedule and refit of the k-d tree (:mod:`~dustygas.sph.active_search`); the tree is rebuilt
@@ -359,10 +361,18 @@ class BlockStepEngine(BlockState, BlockPhysics):
             self.ext_level = self.level.copy()
 
     @staticmethod
-    def _next_level(old, want, tick):
-        """Faster at once, slower by one level, and never off the hierarchy (``tick`` a multiple of the step)."""
-        aligned = TICKS_LOG2 - int(np.log2(tick & -tick)) if tick else 0
-        return np.maximum(np.where(want >= old, want, np.maximum(want, old - 1)), aligned)
+    def _next_level(old, want):
+        """Faster at once, slower by one level at a time."""
+        return np.where(want >= old, want, np.maximum(want, old - 1))
+
+    def _until_next(self, level, tick: int, final: bool) -> np.ndarray:
+        """Time from ``tick`` to the next activation on ``level``: the next multiple of the level's step
+        (a full step when ``tick`` is one already; less for a particle woken early, or moved to a slower
+        level, between two of its multiples)."""
+        if final:
+            tick = 0
+        span = np.int64(1) << (TICKS_LOG2 - level)
+        return ((tick // span + 1) * span - tick) * (self.dt_block / float(np.int64(1) << TICKS_LOG2))
 
     def _rebin(self, ev, ext_only, tick: int) -> None:
         """New levels of the particles active at ``tick`` (SPH, then external-force levels)."""
@@ -370,10 +380,10 @@ class BlockStepEngine(BlockState, BlockPhysics):
             return
         act = ev[0]
         if act.size:
-            self.level[act] = self._next_level(self.level[act], self._levels_for(self.dt_want[act]), tick)
+            self.level[act] = self._next_level(self.level[act], self._levels_for(self.dt_want[act]))
             self._limit(ev)
         both = np.concatenate([act, ext_only])
-        new = self._next_level(self.ext_level[both], self._levels_for(self.dt_want_ext[both]), tick)
+        new = self._next_level(self.ext_level[both], self._levels_for(self.dt_want_ext[both]))
         self.ext_level[both] = np.maximum(new, self.level[both])
 
     def _limit(self, ev) -> None:
@@ -391,12 +401,12 @@ class BlockStepEngine(BlockState, BlockPhysics):
         p = self.particles
         _, length, per = self._box_arrays
         tau_new = self._tau.copy()
-        tau_new[act] = self.dt_block * np.ldexp(1.0, -self.level[act])
+        tau_new[act] = self._until_next(self.level[act], tick, final)
         if self._implicit:  # the drag averaged over the coming pair steps, now that they are known
             self.acc[act] += self._drag(ev, tau_new)
         both = np.concatenate([act, ext_only])
         ext_new = self._tau_ext.copy()
-        ext_new[both] = self.dt_block * np.ldexp(1.0, -self.ext_level[both])
+        ext_new[both] = self._until_next(self.ext_level[both], tick, final)
         close = np.empty((act.size, 3))
         open_ = np.empty((act.size, 3))
         kick_active(act, p.ptype, p.pos, p.mass, self._tau, tau_new, self.last_tick, tick, tick_dt, same_o, same_i,
@@ -498,7 +508,8 @@ class BlockStepEngine(BlockState, BlockPhysics):
         racc = self.external.accretion_radius if self.external.star_gm else 0.0
         while tick < top:
             kmax = int(self.ext_level[p.ptype != DEAD].max())
-            dtick = np.int64(1) << (TICKS_LOG2 - kmax)
+            span = np.int64(1) << (TICKS_LOG2 - kmax)
+            dtick = (tick // span + 1) * span - tick  # to the next activation of the finest level
             drift_and_accrete(p.pos, p.vel, p.mass, p.ptype, float(dtick * tick_dt), racc, self._accreted)
             tick += dtick
             substeps += 1
@@ -535,7 +546,7 @@ class BlockStepEngine(BlockState, BlockPhysics):
 
     def _kick_external_only(self, ext_only, acc_ext_only, tick: int, tick_dt: float) -> None:
         ext_new = self._tau_ext.copy()
-        ext_new[ext_only] = self.dt_block * np.ldexp(1.0, -self.ext_level[ext_only])
+        ext_new[ext_only] = self._until_next(self.ext_level[ext_only], tick, False)
         kick_external(ext_only, acc_ext_only, self._tau_ext, ext_new, self.last_ext, tick, tick_dt, self.particles.vel)
         self._tau_ext = ext_new
         self.last_ext[ext_only] = tick
