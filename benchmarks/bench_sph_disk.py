@@ -2,7 +2,8 @@
 
 The disk is the thesis's (``sph-disk``): 1 M_sun star (fixed point mass, accretion radius 2.5 au),
 5e-3 M_sun of gas with Sigma ~ 1/R from 5 to 200 au, c_s ~ R^-1/4 with H/R = 0.05 at 20 au, locally
-isothermal, cubic kernel with h_fact = 1.2, artificial viscosity alpha = 0.1 (constant), beta = 2,
+isothermal, cubic kernel with h_fact = 1.2, artificial viscosity alpha = 0.1 (constant), beta = 2 (as
+Phantom's disc set-up; the ``sph-disk`` default is beta = 0),
 C_cour = 0.3, C_force = 0.25, blocks (Phantom: dtmax) of 0.05 orbits at 20 au. Both codes run the
 same number of blocks from their own set-up of this disk (Phantom's ``setup_disc`` with ``ismoothgas
 = F``; ours without the rotation relaxation, as Phantom has none). Throughput is particle-updates
@@ -45,7 +46,8 @@ def ours(n: int, blocks: int, threads: int, individual: bool = True) -> dict:
     """Particle-updates, CPU and wall time of ``blocks`` blocks after a first (warm-up) block."""
     numba.set_num_threads(threads)
     prob = get_problem("sph-disk")
-    cfg = prob.config(overrides=[f"disk.n_gas={n}", "disk.relax=none", f"steps.individual={str(individual).lower()}"])
+    cfg = prob.config(overrides=[f"disk.n_gas={n}", "disk.relax=none", "sph.beta=2.0",
+                                 f"steps.individual={str(individual).lower()}"])
     eng = prob.build(cfg)
     eng.advance(eng.timestep())
     u0, c0, w0, t0 = eng.total_updates, time.process_time(), time.perf_counter(), eng.t

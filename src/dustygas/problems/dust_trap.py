@@ -56,7 +56,7 @@ class DustTrap(Problem):
               "fragmentation."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=20 * ORBIT_10, dt_snapshot=5 * ORBIT_10, log_every=20),
-        "sph": with_defaults(SPH_SCHEMA, switch="none", alpha=0.1, alpha_min=0.0, alpha_u=0.0,
+        "sph": with_defaults(SPH_SCHEMA, switch="none", alpha=0.1, alpha_min=0.0, beta=0.0, alpha_u=0.0,
                              neighbour_search="tree", reorder_every=10),
         "disk": {
             "n_gas": Param(4000, "number of gas particles (and of dust particles)", min=100),

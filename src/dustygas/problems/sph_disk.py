@@ -11,7 +11,11 @@ discrete disk. The thesis used :math:`10^5` gas particles (the ``*-thesis`` pres
 :math:`10^4` so that a run takes minutes. Units: au, M_sun, yr/(2 pi) (:data:`dustygas.units.DISK_UNITS`).
 
 Time integration: hierarchical individual time steps with pairwise kicks
-(:mod:`dustygas.sph.timesteps`); ``steps.individual = false`` gives one global step.
+(:mod:`dustygas.sph.timesteps`); ``steps.individual = false`` gives one global step. The artificial
+viscosity is the linear term alone, :math:`\alpha = 0.1`, :math:`\beta = 0`: the quadratic term acts on
+the Keplerian shear between neighbours (approaching pairs) and, at :math:`10^4` particles, drains the
+disk inside 15 au into the star within three orbits at 20 au (measured: 74 % of the 10-15 au annulus
+with :math:`\beta = 2`, 5 % with :math:`\beta = 0`).
 
 Dust rings (``dust.enabled``, ``dust.ring_radii``, ``dust.ring_taus``): ``dust.n_ring`` two-fluid dust particles each,
 on a midplane circle, of mass ``dust.mass_ratio`` times a gas particle's (so that they barely act on
@@ -76,7 +80,7 @@ class SPHDisk(Problem):
     summary = "3D locally isothermal protoplanetary gas disk (5-200 au, 5e-3 M_sun) with optional dust rings, in SPH."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=10 * ORBIT_20, dt_snapshot=ORBIT_20, log_every=20),
-        "sph": with_defaults(SPH_SCHEMA, switch="none", alpha=0.1, alpha_min=0.0, alpha_u=0.0,
+        "sph": with_defaults(SPH_SCHEMA, switch="none", alpha=0.1, alpha_min=0.0, beta=0.0, alpha_u=0.0,
                              neighbour_search="tree", reorder_every=10),
         "disk": {
             "n_gas": Param(10000, "number of gas particles (the thesis: 100000)", min=100),
