@@ -72,6 +72,12 @@ def fig3_6(output: Path, quick: bool = True, runs=None) -> list[Path]:
 ORBIT = 2.0 * np.pi * 20.0**1.5
 
 
+def _mean_band(ax, x, mean, std):
+    """The dust's mean with a one-sigma band."""
+    ax.plot(x, mean, color="C0", label="dust, mean")
+    ax.fill_between(x, mean - std, mean + std, color="C0", alpha=0.15, lw=0, label=r"$\pm 1\sigma$")
+
+
 def _drift_columns(s, tag):
     from ..plot import Column
 
@@ -94,9 +100,7 @@ def fig3_7(output: Path, quick: bool = True, runs=None) -> list[Path]:
     s = _series(run, 1.0)
     with house_style():
         fig, ax = new_figure(1, 1, width=5.5, height=3.6)
-        ax.plot(s.orbits, s.mean_vR / s.v_kepler, color="C0", label="dust, mean")
-        ax.fill_between(s.orbits, (s.mean_vR - s.std_vR) / s.v_kepler, (s.mean_vR + s.std_vR) / s.v_kepler,
-                        color="C0", alpha=0.15, lw=0, label=r"$\pm 1\sigma$")
+        _mean_band(ax, s.orbits, s.mean_vR / s.v_kepler, s.std_vR / s.v_kepler)
         ax.plot(s.orbits, s.drift_setup / s.v_kepler, "k--", lw=1.2, label=r"eq. 3.23, set-up $\eta$")
         ax.plot(s.orbits, s.drift_disk / s.v_kepler, color="0.5", lw=1.0, label=r"eq. 3.23, the disk's gas")
         ax.axhline(0.0, color="k", lw=0.5)
@@ -126,9 +130,7 @@ def fig3_8(output: Path, quick: bool = True, runs=None) -> list[Path]:
         R[i] = R[i - 1] + v * (s.time[i] - s.time[i - 1])
     with house_style():
         fig, ax = new_figure(1, 1, width=5.5, height=3.6)
-        ax.plot(s.orbits, s.mean_R, color="C0", label="dust, mean")
-        ax.fill_between(s.orbits, s.mean_R - s.std_R, s.mean_R + s.std_R, color="C0", alpha=0.15, lw=0,
-                        label=r"$\pm 1\sigma$")
+        _mean_band(ax, s.orbits, s.mean_R, s.std_R)
         ax.plot(s.orbits, R, "k--", lw=1.2, label=r"eq. 3.23, set-up $\eta$")
         ax.set_xlabel(r"time [orbits at $\langle R\rangle$]")
         ax.set_ylabel(r"$\langle R\rangle$ [au]")

@@ -27,7 +27,7 @@ from numba import njit, prange
 
 from .density import solve_one_smoothing_length
 from .dust.two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pair
-from .forces import pressure_pair
+from .forces import NPACK, pack_row, pressure_pair
 from .kernels import kernel_dshape, kernel_shape
 from .neighbours import minimum_image
 from .particles import GAS
@@ -38,9 +38,8 @@ __all__ = ["active_densities", "pack_hydro", "active_hydro", "active_drag", "gas
 
 HYDRO = 0
 DRAG = 1
-# columns of the packed per-particle table of :func:`active_hydro`
+# columns of the packed per-particle table (:func:`dustygas.sph.forces.pack_row`) that the pair loop reads
 _X, _Y, _Z, _VX, _VY, _VZ, _HINV, _GRADNORM, _M, _P, _RHOINV, _OMBAR, _FORM, _CS, _ALPHA = range(15)
-NPACK = 15
 
 
 # --------------------------------------------------------------------------- density
@@ -62,27 +61,14 @@ def active_densities(act, pos, mass, h_guess, h_search, same_start, same_index, 
 
 
 @njit(parallel=True, cache=True)
-def pack_hydro(rows, pos, vel, mass, h, rho, omega, P, cs, alpha, norm, ndim, form, out):
+def pack_hydro(rows, pos, vel, mass, h, rho, omega, P, cs, alpha, u, norm, ndim, form, out):
     """Write what a neighbour contributes to the pair forces into ``out[rows]`` (the rows the current
-    sub-step reads: the active particles and their neighbours). ``vel`` are predicted velocities."""
+    sub-step reads: the active particles and their neighbours; :func:`dustygas.sph.forces.pack_row`).
+    ``vel`` are the predicted velocities, one per row; the GASOLINE2 factor is :math:`1/\\Omega`."""
     for k in prange(rows.shape[0]):
         a = rows[k]
-        hinv = 1.0 / h[a]
-        out[a, _X] = pos[a, 0]
-        out[a, _Y] = pos[a, 1]
-        out[a, _Z] = pos[a, 2]
-        out[a, _VX] = vel[k, 0]
-        out[a, _VY] = vel[k, 1]
-        out[a, _VZ] = vel[k, 2]
-        out[a, _HINV] = hinv
-        out[a, _GRADNORM] = norm * hinv ** (ndim + 1)
-        out[a, _M] = mass[a]
-        out[a, _P] = P[a]
-        out[a, _RHOINV] = 1.0 / rho[a]
-        out[a, _OMBAR] = 1.0 / (omega[a] * rho[a])
-        out[a, _FORM] = P[a] / (omega[a] * rho[a] * rho[a]) if form == 0 else 1.0 / omega[a]
-        out[a, _CS] = cs[a]
-        out[a, _ALPHA] = alpha[a]
+        pack_row(out, a, pos, vel[k, 0], vel[k, 1], vel[k, 2], mass, h, rho, omega, P, cs, alpha, u, 1.0 / omega[a],
+                 norm, ndim, form)
 
 
 @njit(parallel=True, cache=True)

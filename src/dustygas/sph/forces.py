@@ -48,7 +48,8 @@ from .kernels import kernel_dshape
 from .neighbours import minimum_image
 from .viscosity import conductivity_signal, signal_speed, viscous_pair
 
-__all__ = ["PRICE2012", "GASOLINE2", "FORCE_FORMS", "pack_particles", "pressure_pair", "hydro_forces"]
+__all__ = ["PRICE2012", "GASOLINE2", "FORCE_FORMS", "NPACK", "pack_particles", "pack_row", "pressure_pair",
+           "hydro_forces"]
 
 PRICE2012 = 0
 GASOLINE2 = 1
@@ -63,27 +64,35 @@ NPACK = 17
 def pack_particles(pos, vel, mass, h, rho, omega, P, cs, alpha, u, fcorr, norm, ndim, form, out):
     """Copy what a neighbour contributes into one row per particle (``out`` is (N, NPACK))."""
     for a in prange(pos.shape[0]):
-        hinv = 1.0 / h[a]
-        out[a, _X] = pos[a, 0]
-        out[a, _Y] = pos[a, 1]
-        out[a, _Z] = pos[a, 2]
-        out[a, _VX] = vel[a, 0]
-        out[a, _VY] = vel[a, 1]
-        out[a, _VZ] = vel[a, 2]
-        out[a, _HINV] = hinv
-        out[a, _GRADNORM] = norm * hinv ** (ndim + 1)
-        out[a, _M] = mass[a]
-        out[a, _P] = P[a]
-        out[a, _RHOINV] = 1.0 / rho[a]
-        out[a, _OMBAR] = 1.0 / (omega[a] * rho[a])
-        if form == PRICE2012:
-            out[a, _FORM] = P[a] / (omega[a] * rho[a] * rho[a])
-        else:
-            out[a, _FORM] = fcorr[a]
-        out[a, _CS] = cs[a]
-        out[a, _ALPHA] = alpha[a]
-        out[a, _U] = u[a]
-        out[a, _RHO] = rho[a]
+        pack_row(out, a, pos, vel[a, 0], vel[a, 1], vel[a, 2], mass, h, rho, omega, P, cs, alpha, u, fcorr[a], norm,
+                 ndim, form)
+
+
+@njit(inline="always")
+def pack_row(out, a, pos, vx, vy, vz, mass, h, rho, omega, P, cs, alpha, u, fcorr_a, norm, ndim, form):
+    """Row ``a`` of the packed table (:func:`pack_particles`) with velocity ``(vx, vy, vz)`` (the predicted
+    one) and the GASOLINE2 factor ``fcorr_a``; shared by the individual-time-step kernels."""
+    hinv = 1.0 / h[a]
+    out[a, _X] = pos[a, 0]
+    out[a, _Y] = pos[a, 1]
+    out[a, _Z] = pos[a, 2]
+    out[a, _VX] = vx
+    out[a, _VY] = vy
+    out[a, _VZ] = vz
+    out[a, _HINV] = hinv
+    out[a, _GRADNORM] = norm * hinv ** (ndim + 1)
+    out[a, _M] = mass[a]
+    out[a, _P] = P[a]
+    out[a, _RHOINV] = 1.0 / rho[a]
+    out[a, _OMBAR] = 1.0 / (omega[a] * rho[a])
+    if form == PRICE2012:
+        out[a, _FORM] = P[a] / (omega[a] * rho[a] * rho[a])
+    else:
+        out[a, _FORM] = fcorr_a
+    out[a, _CS] = cs[a]
+    out[a, _ALPHA] = alpha[a]
+    out[a, _U] = u[a]
+    out[a, _RHO] = rho[a]
 
 
 @njit(inline="always")

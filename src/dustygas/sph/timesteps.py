@@ -296,8 +296,8 @@ class BlockStepEngine(BlockState, BlockPhysics):
         acc = np.zeros((n, 3))
         pair_s = np.zeros(same_i.size)
         if gas.size:
-            pack_hydro(rows, p.pos, vel_pred, p.mass, p.h, self.rho, self.omega, self.P, self.cs, p.alpha, k.norm,
-                       k.ndim, FORCE_FORMS[o.force], self._packed)
+            pack_hydro(rows, p.pos, vel_pred, p.mass, p.h, self.rho, self.omega, self.P, self.cs, p.alpha, p.u,
+                       k.norm, k.ndim, FORCE_FORMS[o.force], self._packed)
             divv, curlv, vsig = np.empty(n), np.empty(n), np.empty(n)
             active_hydro(act, p.ptype, self._packed, same_o, same_i, same_n, k.shape, k.radius, length, per,
                          FORCE_FORMS[o.force], o.beta, pair_s, acc, divv, curlv, vsig)
