@@ -115,7 +115,7 @@ class DustTrap(Problem):
         dustp.extra["grain_size"] = np.full(len(gas), dust.grain_size / u.length)
         particles = merge_particles(gas, dustp)
         drag = TwoFluidOptions(drag=DragLaw("epstein", grain_density=rho_grain), form="projected",
-                               reconstruction="none", integration="implicit", c_drag=dust.c_drag, heating=False)
+                               reconstruction="gas", integration="implicit", c_drag=dust.c_drag, heating=False)
         growth = None
         if gr.enabled:
             growth = GrainGrowth(alpha=gr.alpha, rossby=gr.rossby, v_frag=gr.v_frag * 100.0 / u.velocity,

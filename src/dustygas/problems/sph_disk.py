@@ -4,10 +4,14 @@ The disk of thesis §3.3.1 (:mod:`dustygas.sph.disk`): a 1 M_sun star (a point m
 accretes particles within ``disk.accretion_radius``), a gas disk of 5e-3 M_sun with
 :math:`\\Sigma \\propto R^{-1}` from 5 to 200 au, :math:`T \\propto R^{-1/2}` with :math:`H/R = 0.05` at
 20 au (so :math:`\\eta = 6.9\\times10^{-3}` there, thesis eq. 3.24), locally isothermal, vertically
-Gaussian, rotating with its pressure support. ``disk.relax = "rotation"`` (the default) then replaces
-each gas particle's rotation by the one that balances the SPH forces it feels at the start
-(:func:`dustygas.sph.disk.balance_rotation`), which removes the initial epicyclic ringing of a
-discrete disk. The thesis used :math:`10^5` gas particles (the ``*-thesis`` presets); the defaults use
+Gaussian, rotating with its pressure support. A discrete disk is not in equilibrium with its own
+SPH forces (with :math:`10^4` particles :math:`h \approx 2H` at 20 au): left alone it settles vertically
+within an orbit and the midplane gas flows outward at ~1 % of :math:`v_K` meanwhile, which carries
+:math:`\tau_s \lesssim 1` dust outward too. ``disk.relax = "damped"`` (the default) therefore first evolves
+the gas alone for ``disk.relax_orbits`` orbits at ``r_ref`` with its radial and vertical velocities
+damped on the local orbital time (:func:`dustygas.sph.disk.relax_disk`), then adds the dust and puts
+every gas particle on the circular orbit the SPH forces it feels balance
+(:func:`dustygas.sph.disk.balance_rotation`); ``"rotation"`` does only the last step. The thesis used :math:`10^5` gas particles (the ``*-thesis`` presets); the defaults use
 :math:`10^4` so that a run takes minutes. Units: au, M_sun, yr/(2 pi) (:data:`dustygas.units.DISK_UNITS`).
 
 Time integration: hierarchical individual time steps with pairwise kicks
@@ -43,7 +47,7 @@ from ..errors import ConfigError
 from ..physics.drag import mean_free_path
 from ..runner import RUN_SCHEMA
 from ..sph import Box, ExternalForces
-from ..sph.disk import DiskModel, balance_rotation, cylindrical, merge_particles, ring_particles
+from ..sph.disk import DiskModel, balance_rotation, cylindrical, merge_particles, relax_disk, ring_particles
 from ..sph.disk_diagnostics import RING, TRACK, DiskDiagnostics
 from ..sph.dust.drag_law import DragLaw
 from ..sph.dust.two_fluid import DRAG_FORMS, DRAG_INTEGRATIONS, DRAG_KERNELS, TwoFluidOptions
@@ -94,8 +98,10 @@ class SPHDisk(Problem):
             "r_ref": Param(20.0, "reference radius of the aspect ratio (and of steps.dt_max)", "au", min=0.0,
                            min_open=True),
             "accretion_radius": Param(2.5, "particles closer to the star are accreted", "au", min=0.0),
-            "relax": Param("rotation", "set-up relaxation: none, or rotation balancing the initial SPH forces",
-                           choices=("none", "rotation")),
+            "relax": Param("rotation", "set-up relaxation: none; rotation balancing the initial SPH forces; or damped "
+                           "evolution of the gas for disk.relax_orbits, then that rotation",
+                           choices=("none", "rotation", "damped")),
+            "relax_orbits": Param(1.0, "duration of the damped relaxation", "orbits at r_ref", min=0.0, min_open=True),
         },
         "steps": {
             "individual": Param(True, "hierarchical individual time steps (false: one global step)"),
@@ -117,6 +123,9 @@ class SPHDisk(Problem):
             "drag_kernel": Param("gas", "drag kernel D_ai(h_a) of the gas particle (eq. 3.19) or the pair average",
                                  choices=DRAG_KERNELS),
             "c_drag": Param(0.9, "explicit-drag time-step factor dt <= c_drag t_s", min=0.0, min_open=True),
+            "reconstruction": Param("gas", "relative velocity of a pair: as it is (none), or at the dust particle "
+                                    "with the gas velocity extrapolated by the gas's SPH gradient (gas)",
+                                    choices=("none", "gas")),
             "integration": Param("explicit", "drag in time: explicit (dt <= c_drag t_s, eq. 2.15) or the pairwise "
                                  "exponential average over the pair step (implicit)", choices=DRAG_INTEGRATIONS),
         },
@@ -177,6 +186,10 @@ class SPHDisk(Problem):
             gas.extra[TRACK][int(np.argmin((R - Rt) ** 2 + gas.pos[:, 2] ** 2))] = j
         if s.enabled:
             gas = split_band(gas, s.r1, s.r2, tuple(s.buffers), s.seed)
+        if d.relax == "damped":  # the gas alone settles first; the dust rings are added to the settled disk
+            relaxing = self._engine(cfg, model, opts, gas, None, ())
+            relax_disk(relaxing, d.relax_orbits * float(model.orbital_period(d.r_ref)), d.star_mass)
+            gas = relaxing.particles
         m_gas = d.disk_mass / d.n_gas
         rho_grain = dust.grain_density / DISK_UNITS.density
         sets = [gas]
@@ -196,23 +209,27 @@ class SPHDisk(Problem):
         drag = None
         if rings:
             drag = TwoFluidOptions(drag=DragLaw("epstein", grain_density=rho_grain), form=dust.form,
-                                   reconstruction="none", integration=dust.integration, c_drag=dust.c_drag, heating=False,
+                                   reconstruction=dust.reconstruction, integration=dust.integration, c_drag=dust.c_drag, heating=False,
                                    drag_kernel=dust.drag_kernel)
-        st = cfg.steps
-        steps = BlockStepOptions(individual=st.individual, max_level=st.max_level,
-                                 dt_max=st.dt_max * float(model.orbital_period(d.r_ref)),
-                                 rebuild_fraction=st.rebuild_fraction)
         diagnostics = DiskDiagnostics(model, n_rings=len(rings), n_tracks=len(diag.track_radii),
                                       annulus=diag.annulus)
-        engine = BlockStepEngine(particles, Box.open_box(3), model.eos(), opts,
-                                 ExternalForces(star_gm=d.star_mass, accretion_radius=d.accretion_radius), drag=drag,
-                                 steps=steps, diagnostics=(diagnostics,))
-        if d.relax == "rotation":
+        engine = self._engine(cfg, model, opts, particles, drag, (diagnostics,))
+        if d.relax != "none":
             engine.timestep()  # one evaluation of every force at t = 0
             p = engine.particles
             balance_rotation(p.pos, p.vel, engine.acc, p.ptype == GAS)
             engine.reset()
         return engine
+
+    @staticmethod
+    def _engine(cfg, model, opts, particles, drag, diagnostics) -> BlockStepEngine:
+        d, st = cfg.disk, cfg.steps
+        steps = BlockStepOptions(individual=st.individual, max_level=st.max_level,
+                                 dt_max=st.dt_max * float(model.orbital_period(d.r_ref)),
+                                 rebuild_fraction=st.rebuild_fraction)
+        return BlockStepEngine(particles, Box.open_box(3), model.eos(), opts,
+                               ExternalForces(star_gm=d.star_mass, accretion_radius=d.accretion_radius), drag=drag,
+                               steps=steps, diagnostics=diagnostics)
 
 
 _RINGS = {"enabled": True, "ring_radii": [20.0, 20.0, 52.0], "ring_taus": [1.0, 10.0, 1.0]}

@@ -73,14 +73,17 @@ def pack_hydro(rows, pos, vel, mass, h, rho, omega, P, cs, alpha, u, norm, ndim,
 
 @njit(parallel=True, cache=True)
 def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, radius, length, periodic, form, beta,
-                 pair_s, acc, divv, curlv, vsig):
+                 pair_s, acc, divv, curlv, vsig, grad):
     """Pressure and artificial-viscosity pair forces of the active gas particles (thesis eqs. 3.2-3.3;
     :mod:`dustygas.sph.forces`), with :math:`\\nabla\\cdot v`, :math:`|\\nabla\\times v|` and signal speeds.
 
     ``pair_s[e]`` receives the pair factor :math:`s_{ab}/r_{ab}` of row entry ``e`` (symmetric in
     :math:`a \\leftrightarrow b`): the acceleration of :math:`a` is :math:`-m_b s_{ab}\\,\\mathbf r_{ab}/r_{ab}`
     and that of :math:`b` is :math:`+m_a s_{ab}\\,\\mathbf r_{ab}/r_{ab}`. ``acc`` (per slot) is the sum,
-    used for the time step; the kicks are :func:`kick_active` / :func:`kick_passive`.
+    used for the time step; the kicks are :func:`kick_active` / :func:`kick_passive`. ``grad`` (per slot,
+    row-major :math:`\\partial_j v_k`) receives the SPH velocity gradient
+    :math:`-(\\Omega_a\\rho_a)^{-1}\\sum_b m_b(\\mathbf v_a - \\mathbf v_b)\\,\\nabla_a W_{ab}(h_a)`
+    (:func:`dustygas.sph.dust.two_fluid_kernels.velocity_gradient`) from the same pairs.
     """
     r2max = radius * radius
     for i in prange(act.shape[0]):
@@ -93,6 +96,8 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
                 pair_s[o + k] = 0.0
             acc[i, 0] = acc[i, 1] = acc[i, 2] = 0.0
             divv[i] = curlv[i] = vsig[i] = 0.0
+            for c in range(9):
+                grad[i, c] = 0.0
             continue
         pa = packed[a]
         xa, ya, za = pa[_X], pa[_Y], pa[_Z]
@@ -104,6 +109,7 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
         alpha_a = pa[_ALPHA]
         ombar_a = pa[_OMBAR]
         vs = cs_a
+        g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
         for k in range(same_count[i]):
             b = same_index[o + k]
             pb = packed[b]
@@ -141,6 +147,15 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
             cx += w * (dvy * dz - dvz * dy)
             cy += w * (dvz * dx - dvx * dz)
             cz += w * (dvx * dy - dvy * dx)
+            g0 += w * dvx * dx
+            g1 += w * dvx * dy
+            g2 += w * dvx * dz
+            g3 += w * dvy * dx
+            g4 += w * dvy * dy
+            g5 += w * dvy * dz
+            g6 += w * dvz * dx
+            g7 += w * dvz * dy
+            g8 += w * dvz * dz
             vs = max(vs, signal_speed(cs_a, pb[_CS], vdotr, beta))
         acc[i, 0] = ax
         acc[i, 1] = ay
@@ -148,6 +163,9 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
         divv[i] = -ombar_a * div
         curlv[i] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
         vsig[i] = vs
+        grad[i, 0], grad[i, 1], grad[i, 2] = -ombar_a * g0, -ombar_a * g1, -ombar_a * g2
+        grad[i, 3], grad[i, 4], grad[i, 5] = -ombar_a * g3, -ombar_a * g4, -ombar_a * g5
+        grad[i, 6], grad[i, 7], grad[i, 8] = -ombar_a * g6, -ombar_a * g7, -ombar_a * g8
 
 
 # --------------------------------------------------------------------------- drag
@@ -155,7 +173,7 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
 
 @njit(parallel=True, cache=True)
 def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape, ndim, length, periodic, c_const,
-                projected, gas_kernel, tau, implicit, pair_f, acc, tmin):
+                projected, gas_kernel, tau, implicit, grad, gas_slope, pair_f, acc, tmin):
     """Two-fluid drag (thesis eqs. 3.18-3.19, :func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`) on the
     active particles from their other-species rows; ``table`` holds one row per particle (gas and dust).
 
@@ -163,9 +181,10 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
     :math:`-m_a/m_j` times it), ``acc`` the sum and ``tmin`` the smallest pair stopping time (per slot).
     ``gas_kernel``: the drag kernel uses only the gas particle's smoothing length (eq. 3.19 as written).
     ``implicit``: the pairwise exponential average over the pair step :math:`\\min(\\tau_a, \\tau_j)` (``tau`` per
-    particle), with the non-drag accelerations in ``table``'s last three columns.
+    particle), with the non-drag accelerations in ``table``'s last three columns. ``gas_slope``: the
+    relative velocity at the dust particle, the gas's velocity extrapolated with its gradient ``grad``
+    (per particle; :func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`).
     """
-    grad = np.zeros((1, 9))
     for i in prange(act.shape[0]):
         a = act[i]
         side = KERNEL_AVERAGE
@@ -178,7 +197,8 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
             j = cross_index[o + k]
             dt_pair = min(tau[a], tau[j]) if implicit else 0.0
             fx, fy, fz, _, tp = drag_pair(table, grad, table, grad, a, j, shape, ndim, length, periodic, c_const,
-                                          projected, False, False, dt_pair, False, side)
+                                          projected, gas_slope, False, dt_pair, False, side,
+                                          (1 if ptype[a] == GAS else 2) if gas_slope else 0)
             pair_f[o + k, 0] = fx
             pair_f[o + k, 1] = fy
             pair_f[o + k, 2] = fz

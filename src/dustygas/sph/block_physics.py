@@ -39,7 +39,7 @@ class BlockPhysics:
         tau = tau_new if tau_new is not None else self._tau
         active_drag(act, p.ptype, self._drag_table(rows, vel_pred, other), cross_o, cross_i, cross_n, k.shape,
                     k.ndim, length, per, c0, d.form == "projected", d.drag_kernel == "gas", tau, tau_new is not None,
-                    pair_f, acc_d, tmin)
+                    self.grad_v, d.reconstruction == "gas", pair_f, acc_d, tmin)
         self.tmin[act] = tmin
         return acc_d
 

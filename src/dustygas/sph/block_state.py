@@ -52,6 +52,7 @@ class BlockState:
         self.omega[:] = 1.0
         self.tmin[:] = np.inf
         self._n_same[:] = 64
+        self.grad_v = np.zeros((n, 9))  # SPH velocity gradient of the gas at its last evaluation
         self._wake = np.zeros(n, np.bool_)
         self._scratch()
 
@@ -75,7 +76,7 @@ class BlockState:
     def _reorder(self, order: np.ndarray) -> None:
         """Keep the particles ``order`` (in that order), with all their arrays."""
         self.particles = self.particles.take(order)
-        for name in FIELDS + VECTORS + INTEGERS + ("_wake",):
+        for name in FIELDS + VECTORS + INTEGERS + ("_wake", "grad_v"):
             setattr(self, name, np.ascontiguousarray(getattr(self, name)[order]))
         self._scratch()
 
@@ -133,6 +134,7 @@ class BlockState:
         arrays = {f"particles/{k}": np.array(v) for k, v in self.particles.arrays().items()}
         arrays.update({f"block/{name}": np.array(getattr(self, name)) for name in FIELDS + VECTORS + INTEGERS})
         arrays["block/_wake"] = self._wake.astype(np.int8)
+        arrays["block/grad_v"] = self.grad_v.copy()
         arrays["accreted"] = self._accreted.copy()
         attrs = {**self._attrs(), "started": int(self.started), "dt_block": self.dt_block, "updates": self.updates,
                  "total_updates": self.total_updates, "substeps": self.substeps,
@@ -145,6 +147,7 @@ class BlockState:
         for name in FIELDS + VECTORS + INTEGERS:
             setattr(self, name, np.array(arrays[f"block/{name}"]))
         self._wake = np.array(arrays["block/_wake"]).astype(np.bool_)
+        self.grad_v = np.array(arrays["block/grad_v"])
         self._accreted = np.array(arrays["accreted"])
         self.started = bool(attrs["started"])
         self.dt_block = float(attrs["dt_block"])

@@ -46,7 +46,7 @@ from ..physics.drag import epstein_grain_size
 from .eos import EquationOfState
 from .particles import DUST, GAS, ParticleSet
 
-__all__ = ["DiskModel", "balance_rotation", "ring_particles", "merge_particles", "cylindrical"]
+__all__ = ["DiskModel", "balance_rotation", "relax_disk", "ring_particles", "merge_particles", "cylindrical"]
 
 #: Roberts (2018) generalised golden ratio for two dimensions (the plastic number)
 _PLASTIC = 1.324717957244746
@@ -233,3 +233,24 @@ def balance_rotation(pos: np.ndarray, vel: np.ndarray, acc: np.ndarray, select: 
     vel[i, 1] = vphi * c[ok]
     vel[i, 2] = 0.0
     return int((~ok).sum())
+
+
+def relax_disk(engine, duration: float, star_mass: float = 1.0) -> int:
+    """Relaxation stage of a gas disk: advance ``engine`` for ``duration`` damping every particle's radial
+    and vertical velocity by :math:`e^{-\\Omega_K\\Delta t}` after each block (its local orbital time), so
+    that the discrete disk settles into the vertical and radial structure its own SPH forces hold,
+    then put it on the circular orbits those forces balance (:func:`balance_rotation`). Returns the
+    number of particles left unbalanced (pushed outward)."""
+    while engine.t < duration * (1 - 1e-12):
+        engine.advance(min(engine.timestep(), duration - engine.t))
+        p = engine.particles
+        R, _, vR, vphi = cylindrical(p.pos, p.vel)
+        f = np.exp(-engine.dt_block * np.sqrt(star_mass / R**3))
+        c, s = p.pos[:, 0] / R, p.pos[:, 1] / R
+        vR = f * vR
+        p.vel[:, 0] = vR * c - vphi * s
+        p.vel[:, 1] = vR * s + vphi * c
+        p.vel[:, 2] *= f
+        engine.v_sync[:] = p.vel
+    p = engine.particles
+    return balance_rotation(p.pos, p.vel, engine.acc, np.ones(len(p), np.bool_))

@@ -152,8 +152,8 @@ class BlockStepEngine(BlockState, BlockPhysics):
             raise SetupError("individual time steps: use sph.switch = none (constant artificial viscosity)")
         if options.force == "gasoline2" and options.gasoline2_f != "gradh":
             raise SetupError("individual time steps: the GASOLINE2 force needs gasoline2_f = gradh")
-        if drag is not None and drag.reconstruction != "none":
-            raise SetupError("individual time steps: two-fluid drag without reconstruction (dust.reconstruction = none)")
+        if drag is not None and drag.reconstruction not in ("none", "gas"):
+            raise SetupError("individual time steps: dust.reconstruction must be none or gas")
         if growth is not None and (drag is None or not drag.drag.needs_sizes or not external.star_gm):
             raise SetupError("grain growth needs Epstein drag (grain sizes) and a star (orbital frequencies)")
         self.box, self.eos, self.options, self.external, self.drag = box, eos, options, external, drag
@@ -298,10 +298,10 @@ class BlockStepEngine(BlockState, BlockPhysics):
         if gas.size:
             pack_hydro(rows, p.pos, vel_pred, p.mass, p.h, self.rho, self.omega, self.P, self.cs, p.alpha, p.u,
                        k.norm, k.ndim, FORCE_FORMS[o.force], self._packed)
-            divv, curlv, vsig = np.empty(n), np.empty(n), np.empty(n)
+            divv, curlv, vsig, grad = np.empty(n), np.empty(n), np.empty(n), np.empty((n, 9))
             active_hydro(act, p.ptype, self._packed, same_o, same_i, same_n, k.shape, k.radius, length, per,
-                         FORCE_FORMS[o.force], o.beta, pair_s, acc, divv, curlv, vsig)
-            self.divv[act], self.curlv[act], self.vsig[act] = divv, curlv, vsig
+                         FORCE_FORMS[o.force], o.beta, pair_s, acc, divv, curlv, vsig, grad)
+            self.divv[act], self.curlv[act], self.vsig[act], self.grad_v[act] = divv, curlv, vsig, grad
         acc_ext = self._external(act)
         self.acc_other[act] = acc + acc_ext
         ev = (act, same_o, same_i, same_n, pair_s, cross_o, cross_i, cross_n, np.zeros((cross_i.size, 3)), acc_ext,

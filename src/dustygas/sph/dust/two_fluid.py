@@ -40,7 +40,7 @@ from .two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pa
 
 __all__ = ["TwoFluidOptions", "TwoFluidDust", "RECONSTRUCTIONS", "DRAG_FORMS", "DRAG_INTEGRATIONS", "DRAG_KERNELS"]
 
-RECONSTRUCTIONS = ("mc", "none", "unlimited")
+RECONSTRUCTIONS = ("mc", "none", "unlimited", "gas")
 DRAG_FORMS = ("projected", "non-projected")
 DRAG_INTEGRATIONS = ("explicit", "implicit")
 #: smoothing lengths of the drag kernel: the average of the pair's (Laibe & Price 2012a) or the gas
@@ -164,10 +164,12 @@ class TwoFluidDust(SPHModule):
         nl_gd = self.finder.find(pos_d, h_d, query_pos=pos_g, query_h=h_g, allow_overlap=True)
         gas_kernel = o.drag_kernel == "gas"
         drag_pass(table_g, grad_g, table_d, grad_d, nl_gd.index, nl_gd.count, k.shape, k.ndim, length, per,
-                  c0, projected, recon, limit, dt_imp, heat, acc_g, q_g, t_g, KERNEL_OWN if gas_kernel else KERNEL_AVERAGE)
+                  c0, projected, recon, limit, dt_imp, heat, acc_g, q_g, t_g, KERNEL_OWN if gas_kernel else KERNEL_AVERAGE,
+                  1 if o.reconstruction == "gas" else 0)
         nl_dg = self.finder.find(pos_g, h_g, query_pos=pos_d, query_h=h_d, allow_overlap=True)
         drag_pass(table_d, grad_d, table_g, grad_g, nl_dg.index, nl_dg.count, k.shape, k.ndim, length, per,
-                  c0, projected, recon, limit, dt_imp, False, acc_d, q_d, t_d, KERNEL_OTHER if gas_kernel else KERNEL_AVERAGE)
+                  c0, projected, recon, limit, dt_imp, False, acc_d, q_d, t_d, KERNEL_OTHER if gas_kernel else KERNEL_AVERAGE,
+                  2 if o.reconstruction == "gas" else 0)
         drag_acc = ex[ACC]
         drag_acc[g] = acc_g
         drag_acc[d] = acc_d

@@ -141,7 +141,8 @@ KERNEL_AVERAGE, KERNEL_OWN, KERNEL_OTHER = 0, 1, 2
 
 @njit(parallel=True, cache=True)
 def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, periodic,
-              c_const, projected, recon, limit, dt_implicit, heat, acc, dudt, tmin, kernel_side=KERNEL_AVERAGE):
+              c_const, projected, recon, limit, dt_implicit, heat, acc, dudt, tmin, kernel_side=KERNEL_AVERAGE,
+              gas_slope=0):
     """Drag on every particle of one species from its neighbours of the other (module docstring).
 
     ``table``/``otable`` hold one row per particle: position, velocity, mass, :math:`1/h`, the kernel
@@ -151,7 +152,9 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
     gradients ``grad``/``ograd`` (``limit``: MC limiter); ``dt_implicit > 0``: the pairwise
     exponential average over that step. Overwrites ``acc``, ``dudt`` (heating, if ``heat``) and
     ``tmin``, the smallest pair stopping time seen by each particle. ``kernel_side`` selects the
-    smoothing lengths of the drag kernel (``KERNEL_*``).
+    smoothing lengths of the drag kernel (``KERNEL_*``); ``gas_slope`` (1: the ``table`` species is the
+    gas, 2: the other one) replaces the midpoint reconstruction by the gas velocity extrapolated to the
+    dust particle with the gas's own gradient, :math:`w^* = w - \\sigma_{\\rm gas}`.
     """
     for a in prange(table.shape[0]):
         pa = table[a]
@@ -163,7 +166,8 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
         for kk in range(count[a]):
             j = index[a, kk]
             fx, fy, fz, dq, tpair = drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic,
-                                              c_const, projected, recon, limit, dt_implicit, heat, kernel_side)
+                                              c_const, projected, recon, limit, dt_implicit, heat, kernel_side,
+                                              gas_slope)
             if tpair == math.inf:
                 continue
             tm = min(tm, tpair)
@@ -180,7 +184,7 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
 
 @njit(inline="always")
 def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c_const, projected, recon, limit,
-              dt_implicit, heat, kernel_side):
+              dt_implicit, heat, kernel_side, gas_slope=0):
     """Drag acceleration of particle ``a`` (row of ``table``) from ``j`` (row of ``otable``), the heating
     it causes (if ``heat``) and the pair stopping time: ``(ax, ay, az, du, t_pair)``, with
     ``t_pair = inf`` for a pair that does not interact. Evaluated from either side it gives equal and
@@ -221,7 +225,12 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
         if recon:
             sa = r * _project(grad, a, rx, ry, rz)
             sj = r * _project(ograd, j, rx, ry, rz)
-            ws = w - (mc_limiter(sa, sj) if limit else 0.5 * (sa + sj))
+            if gas_slope == 1:
+                ws = w - sa
+            elif gas_slope == 2:
+                ws = w - sj
+            else:
+                ws = w - (mc_limiter(sa, sj) if limit else 0.5 * (sa + sj))
         if dt_implicit > 0.0:
             df = (pj[_FX] - pa[_FX]) * rx + (pj[_FY] - pa[_FY]) * ry + (pj[_FZ] - pa[_FZ]) * rz
             ph = _phi(dt_implicit / tpair)
@@ -233,9 +242,9 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
     weight = half * (fa * pa[_WN] + fj * pj[_WN])
     wsx, wsy, wsz = wx, wy, wz
     if recon:
-        wsx -= _component_slope(grad, ograd, a, j, 0, r, rx, ry, rz, limit)
-        wsy -= _component_slope(grad, ograd, a, j, 1, r, rx, ry, rz, limit)
-        wsz -= _component_slope(grad, ograd, a, j, 2, r, rx, ry, rz, limit)
+        wsx -= _component_slope(grad, ograd, a, j, 0, r, rx, ry, rz, limit, gas_slope)
+        wsy -= _component_slope(grad, ograd, a, j, 1, r, rx, ry, rz, limit, gas_slope)
+        wsz -= _component_slope(grad, ograd, a, j, 2, r, rx, ry, rz, limit, gas_slope)
     if dt_implicit > 0.0:
         ph = _phi(dt_implicit / tpair)
         c2 = tpair * (1.0 - ph)
@@ -249,8 +258,13 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
 
 
 @njit(cache=True)
-def _component_slope(grad, ograd, a, j, k, r, rx, ry, rz, limit):
-    """Limited (or averaged) change of velocity component ``k`` across the pair (odd in :math:`\\hat{\\mathbf r}`)."""
+def _component_slope(grad, ograd, a, j, k, r, rx, ry, rz, limit, gas_slope=0):
+    """Limited (or averaged) change of velocity component ``k`` across the pair (odd in :math:`\\hat{\\mathbf r}`);
+    with ``gas_slope`` the whole change along the gas particle's gradient (:func:`drag_pass`)."""
     sa = r * (rx * grad[a, 3 * k] + ry * grad[a, 3 * k + 1] + rz * grad[a, 3 * k + 2])
     sj = r * (rx * ograd[j, 3 * k] + ry * ograd[j, 3 * k + 1] + rz * ograd[j, 3 * k + 2])
+    if gas_slope == 1:
+        return sa
+    if gas_slope == 2:
+        return sj
     return mc_limiter(sa, sj) if limit else 0.5 * (sa + sj)
