@@ -1,4 +1,4 @@
-"""Throughput of dusty SPH on Phantom's 3D dustywave: two-fluid (acceptance 7 of issue 7) and one-fluid.
+"""Throughput of dusty SPH on Phantom's 3D dustywave: two-fluid and one-fluid.
 
 The problem is ``dustywave-3d``, Phantom's default dustywave set-up: a linear sound wave along x in
 a periodic 3D box of 64 x 12 x 12 hexagonal-close-packed gas particles with a dust particle on each
@@ -13,8 +13,8 @@ The one-fluid line is the same wave with mixture particles (9216, terminal-veloc
 upwind exchange), for comparison: its steps are limited by the Courant condition instead of
 t_s, so per unit of simulated time it is far cheaper.
 
-Anchors (numbers.md §4; Phantom v2026.0.1, gfortran -O3 -fopenmp, measured on this machine): the
-two-fluid dustywave at 31.4k particle-updates/s on one thread and 62.3k on two. Target (issue 7):
+Anchors (the project's reference figures: Phantom v2026.0.1, gfortran -O3 -fopenmp, an earlier machine): the
+two-fluid dustywave at 31.4k particle-updates/s on one thread and 62.3k on two. Target:
 >= 2x Phantom on one thread (62.8k/s); aim 4x (125.6k/s).
 
 Run alone: ``flock benchmarks/.lock python benchmarks/bench_dustysph.py``.
@@ -32,7 +32,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "src"))
 
 from dustygas.problems import get_problem  # noqa: E402
 
-# Phantom, two-fluid dustywave, particle-updates/s (numbers.md §4)
+# Phantom, two-fluid dustywave, particle-updates/s (reference figures of an earlier machine)
 PHANTOM = {1: 31_400.0, 2: 62_300.0}
 TARGET_VS_PHANTOM = 2.0
 AIM_VS_PHANTOM = 4.0

@@ -8,7 +8,7 @@ into compiled code per step, Courant reduction included) for a few seconds after
 keeps the best of ``--repeat`` runs (the machine is shared; the median is printed too); the
 thread counts alternate within each repeat, so the 2T/1T ratio compares runs taken together.
 
-Athena 4.2 anchors (one core of this machine, gas only, ``numbers.md`` §2; problems hb3 in 2D
+Athena 4.2 anchors (one core of an earlier reference machine, gas only; problems hb3 in 2D
 x-z and hgb in 3D). Athena has no VL+PPM figures, so our VL2+PPM rows are compared with its CTU
 rows of the same reconstruction and solver (its default, Courant 0.8 in 2D, 0.4 in 3D); VL2
 needs Courant <= 0.5 in 2D and (in our Courant convention) <= 1/3 in 3D, so per unit of
@@ -37,7 +37,7 @@ import numba  # noqa: E402
 
 from dustygas.grid import GridEngine, Mesh  # noqa: E402
 
-# Athena 4.2, one core, zone-cycles/s (numbers.md §2): (case size, integrator, reconstruction, solver)
+# Athena 4.2, one core, zone-cycles/s (reference figures of an earlier machine): (case size, integrator, reconstruction, solver)
 ATHENA = {
     ("2d64", "ctu", "ppm", "hllc"): 3.2e6, ("2d64", "ctu", "ppm", "hlle"): 3.5e6,
     ("2d64", "ctu", "plm", "hllc"): 4.4e6, ("2d64", "ctu", "plm", "hlle"): 4.8e6,

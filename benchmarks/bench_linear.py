@@ -8,8 +8,8 @@ Prints, for 1 and 2 numba threads:
 * the wall time of a 200×200 (μ, τ_s) growth map maximised over K_x at fixed K_z
   (:func:`dustygas.linear.maps.growth_map`, the Youdin & Goodman 2005 map of thesis Fig 4.1).
 
-Anchors (numbers.md §2, this machine): numpy batched 8×8 complex eigvals ≈ 42,000/s.
-Targets (issue 3): ≥ 500,000 evaluations/s (both cores allowed); 200×200 map < 10 s.
+Anchors (reference figures of an earlier machine): numpy batched 8×8 complex eigvals ≈ 42,000/s.
+Targets: ≥ 500,000 evaluations/s (both cores allowed); 200×200 map < 10 s.
 
 Run alone: ``flock benchmarks/.lock python benchmarks/bench_linear.py``.
 """
@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "src"))
 from dustygas.linear import StreamingParams, growth_rate  # noqa: E402
 from dustygas.linear.maps import growth_map  # noqa: E402
 
-NUMPY_EIGVALS_ANCHOR = 42_000.0  # numbers.md §2: batched 8x8 complex eigvals per second
+NUMPY_EIGVALS_ANCHOR = 42_000.0  # reference figure (earlier machine): batched 8x8 complex eigvals per second
 TARGET_EVALS = 500_000.0
 TARGET_MAP_S = 10.0
 
@@ -72,7 +72,7 @@ def main() -> None:
         rate, cpu = best_rate(lambda: growth_rate(taus, mu, kx, kz), n, repeats=12)
         print(f"growth_rate, {threads} thread(s): {rate:,.0f} evaluations/s ({cpu * 1e6:.2f} CPU-us each) "
               f"= {rate / numpy_rate:.1f}x numpy "
-              f"(same run), {rate / NUMPY_EIGVALS_ANCHOR:.1f}x the numbers.md anchor, "
+              f"(same run), {rate / NUMPY_EIGVALS_ANCHOR:.1f}x the reference anchor, "
               f"{rate / TARGET_EVALS:.2f}x the 500k/s target")
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
     mu_g = np.logspace(-2, 2, 200)

@@ -1,6 +1,6 @@
-"""Throughput of the particle-gas engine against Athena 4.2 on this machine (numbers.md §2).
+"""Throughput of the particle-gas engine against Athena 4.2 (reference figures of an earlier machine).
 
-Main figure (issue 5): the YJ07 linA run, 64², one particle per cell, t = 0 -> 6, exactly as
+Main figure: the YJ07 linA run, 64², one particle per cell, t = 0 -> 6, exactly as
 ``dustygas run si-linA`` does it (VL2 + PPM + HLLC, Courant 0.4, TSC, semi-implicit drag),
 timed over the whole run on one and on two threads: zone-cycles/s, particle-updates/s and
 the ratio to Athena's 1.9e6 zone-cycles/s (CTU + PPM + HLLC at Courant 0.8, 45,923 cycles in
@@ -36,7 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 import numba  # noqa: E402
 
-# Athena 4.2 anchors, one core of this machine (numbers.md §2)
+# Athena 4.2 anchors, one core (reference figures of an earlier machine)
 ATHENA = {
     "linA 64^2 1ppc": dict(zone_cycles=1.9e6, cycles=45_923, wall=99.0, growth=0.4139),
     "linA 64^2 4ppc": dict(zone_cycles=8.9e5, particle_updates=3.6e6, growth=0.4142),

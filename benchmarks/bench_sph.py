@@ -13,7 +13,7 @@ time-step criteria and the kicks and drift -- everything :meth:`SPHEngine.advanc
 Anchors (Phantom v2026.0.1, gfortran -O3 -fopenmp, measured on this machine; see
 benchmarks/RESULTS.md for how): the same 32^3 box at 130k particle-updates/s on one thread and 267k on two;
 64^3 at 134k and 242k (``PHANTOM`` below).
-Targets (issue 6): >= 300k particle-updates/s per thread at 32^3; two threads >= 1.8x one;
+Targets: >= 300k particle-updates/s per thread at 32^3; two threads >= 1.8x one;
 >= 2x Phantom per thread.
 
 Run alone: ``flock benchmarks/.lock python benchmarks/bench_sph.py [n ...]``.

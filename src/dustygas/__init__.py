@@ -1,15 +1,35 @@
 """dustygas: dust and gas in protoplanetary disks.
 
-Public API (the names below are the stable surface; submodules hold the details):
+The public API is :mod:`dustygas.api`, re-exported here (``import dustygas as dg``):
 
-* :mod:`dustygas.physics` -- formulas of the thesis as vectorised functions;
-* :func:`run` -- run a registered problem into a run directory;
-* :func:`problem_names`, :func:`get_problem` -- the problem registry;
-* :mod:`dustygas.linear`, :mod:`dustygas.grid`, :mod:`dustygas.sph` -- the engines
-  (added as they land).
+* run problems: :func:`run`, :func:`restart`, :func:`problem_names`, :func:`get_problem`,
+  :func:`problem_parameters`;
+* read and export runs: :func:`open_run` (xarray Datasets), :func:`export`;
+* look at runs: :func:`plot_history`, :func:`plot_snapshot`, :func:`movie`;
+* analyses: :func:`measure_growth`, :func:`growth_theory`, the linear theory
+  :mod:`dustygas.linear` and the formulas :mod:`dustygas.physics`;
+* thesis figures: :func:`figure_names`, :func:`reproduce_figures` (not to be confused with the
+  package :mod:`dustygas.reproduce` of figure functions).
 """
 
 from ._version import __version__
-from .api import get_problem, problem_names, run
+from .api import (
+    export,
+    figure_names,
+    get_problem,
+    growth_theory,
+    measure_growth,
+    movie,
+    open_run,
+    plot_history,
+    plot_snapshot,
+    problem_names,
+    problem_parameters,
+    reproduce_figures,
+    restart,
+    run,
+)
 
-__all__ = ["__version__", "run", "problem_names", "get_problem"]
+__all__ = ["__version__", "run", "restart", "problem_names", "get_problem", "problem_parameters", "open_run",
+           "export", "plot_history", "plot_snapshot", "movie", "measure_growth", "growth_theory",
+           "figure_names", "reproduce_figures"]

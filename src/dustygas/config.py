@@ -8,6 +8,9 @@ every value on the way in:
 * an unknown section or key is refused with a did-you-mean suggestion;
 * a value of the wrong type, outside its range or not among its choices is refused with a
   message naming the key and what is allowed;
+* a bound that depends on other parameters (a :class:`Limit`, e.g. the Courant number's
+  ``1/ndim`` of the grid) is checked once all layers are in; the engine that enforces it
+  computes it with the same function, so what ``dustygas problems`` shows is what is enforced;
 * malformed TOML is refused with the parser's line and column.
 
 All refusals raise :class:`~dustygas.errors.ConfigError`, which the CLI prints as one line
@@ -29,15 +32,17 @@ import math
 import tomllib
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any, Callable, Iterable, Mapping
 
 from .errors import ConfigError
 
 __all__ = [
     "Param",
+    "Limit",
     "Schema",
     "Config",
     "build_config",
+    "check_limits",
     "parse_override",
     "with_defaults",
     "dump_toml",
@@ -46,6 +51,38 @@ __all__ = [
 
 _SCALAR_TYPES = ("float", "int", "bool", "str")
 _LIST_TYPES = ("float_list", "int_list", "str_list")
+
+
+@dataclass(frozen=True)
+class Limit:
+    """A bound of a parameter that depends on the rest of the configuration.
+
+    Parameters
+    ----------
+    text
+        How the bound reads in ``dustygas problems NAME`` (e.g. ``"1/ndim (0.5 in 2D, 1/3 in 3D)"``).
+    value
+        The bound for a configuration whose other values are validated, or ``None`` where it
+        does not apply; the engine enforcing the bound must compute it with the same function.
+
+    Examples
+    --------
+    >>> from dustygas.config import Limit, Param, build_config
+    >>> half_n = Limit("nx/2", lambda cfg: cfg.grid.nx / 2)
+    >>> schema = {"grid": {"nx": Param(8, "cells"), "width": Param(2, "stencil half-width", min=1, max=half_n)}}
+    >>> build_config(schema, overrides=["grid.width=3"]).grid.width
+    3
+    >>> build_config(schema, overrides=["grid.width=5"])
+    Traceback (most recent call last):
+    ...
+    dustygas.errors.ConfigError: grid.width = 5 is out of range: allowed 1 <= value <= nx/2, here 4
+    """
+
+    text: str
+    value: Callable[["Config"], float | None]
+
+    def __str__(self) -> str:
+        return self.text
 
 
 @dataclass(frozen=True)
@@ -64,6 +101,7 @@ class Param:
         One of ``float, int, bool, str, float_list, int_list, str_list``; inferred if omitted.
     min, max
         Inclusive bounds (exclusive with ``min_open`` / ``max_open``); apply to each list item.
+        A :class:`Limit` is a bound computed from the other parameters.
     choices
         Allowed values for strings (or numbers).
     length
@@ -74,8 +112,8 @@ class Param:
     doc: str
     units: str = ""
     type: str | None = None
-    min: float | None = None
-    max: float | None = None
+    min: float | Limit | None = None
+    max: float | Limit | None = None
     min_open: bool = False
     max_open: bool = False
     choices: tuple | None = None
@@ -96,14 +134,18 @@ class Param:
             parts.append("one of " + ", ".join(str(c) for c in self.choices))
         lo = hi = ""
         if self.min is not None:
-            lo = f"{self.min:g} {'<' if self.min_open else '<='} "
+            lo = f"{_bound_text(self.min)} {'<' if self.min_open else '<='} "
         if self.max is not None:
-            hi = f" {'<' if self.max_open else '<='} {self.max:g}"
+            hi = f" {'<' if self.max_open else '<='} {_bound_text(self.max)}"
         if lo or hi:
             parts.append(f"{lo}value{hi}")
         if self.length is not None:
             parts.append(f"{self.length} items")
         return "; ".join(parts) if parts else _TYPE_WORDS[self.type]
+
+
+def _bound_text(bound: float | Limit) -> str:
+    return str(bound) if isinstance(bound, Limit) else f"{bound:g}"
 
 
 #: A schema maps section name -> parameter name -> :class:`Param`.
@@ -184,14 +226,34 @@ def _coerce_scalar(kind: str, value: Any, where: str) -> Any:
     raise ConfigError(f"{where} = {_fmt(value)}: expected {_TYPE_WORDS[kind]}")
 
 
-def _check_range(p: Param, value: Any, where: str) -> None:
+def _check_range(p: Param, value: Any, where: str, cfg: "Config | None" = None) -> None:
+    """Check the numeric bounds: the fixed ones without ``cfg``, the :class:`Limit` ones with it."""
     bad = False
-    if p.min is not None and (value < p.min or (p.min_open and value == p.min)):
-        bad = True
-    if p.max is not None and (value > p.max or (p.max_open and value == p.max)):
-        bad = True
+    here = []
+    for bound, is_min, is_open in ((p.min, True, p.min_open), (p.max, False, p.max_open)):
+        if bound is None or isinstance(bound, Limit) != (cfg is not None):
+            continue
+        if isinstance(bound, Limit):
+            bound = bound.value(cfg)
+            if bound is None:
+                continue
+            here.append(f"{bound:g}")
+        if (value < bound if is_min else value > bound) or (is_open and value == bound):
+            bad = True
     if bad:
-        raise ConfigError(f"{where} = {_fmt(value)} is out of range: allowed {p.allowed()}")
+        context = f", here {' and '.join(here)}" if here else ""
+        raise ConfigError(f"{where} = {_fmt(value)} is out of range: allowed {p.allowed()}{context}")
+
+
+def check_limits(cfg: "Config") -> None:
+    """Check every :class:`Limit` bound of ``cfg``'s schema against its values (one-line
+    :class:`ConfigError` naming the key, the rule and its value here)."""
+    for section, params in cfg.schema.items():
+        for key, p in params.items():
+            if isinstance(p.min, Limit) or isinstance(p.max, Limit):
+                value = cfg.data[section][key]
+                for item in value if isinstance(value, list) else [value]:
+                    _check_range(p, item, f"{section}.{key}", cfg)
 
 
 def validate_value(p: Param, value: Any, where: str) -> Any:
@@ -304,7 +366,9 @@ class Config(Mapping[str, Section]):
         for text in overrides:
             section, key, value = parse_override(text)
             _merge(self.schema, values, {section: {key: value}}, "--set")
-        return Config(values, self.schema, self.problem_name)
+        out = Config(values, self.schema, self.problem_name)
+        check_limits(out)
+        return out
 
 
 def _merge(schema: Schema, values: dict, data: Mapping, source: str) -> None:
@@ -388,7 +452,9 @@ def build_config(
     for text in overrides:
         section, key, value = parse_override(text)
         _merge(schema, values, {section: {key: value}}, "--set")
-    return Config(values, schema, problem_name)
+    cfg = Config(values, schema, problem_name)
+    check_limits(cfg)
+    return cfg
 
 
 # --------------------------------------------------------------------------- output

@@ -162,6 +162,7 @@ class RunLoop:
             "cycle": int(self.engine.cycle),
             "problem": self.cfg.problem_name,
             "dustygas_version": __version__,
+            "config": config_text(self.cfg),  # the full configuration (config.toml) in every file
         }
 
     def _write_snapshot(self) -> None:

@@ -1,20 +1,16 @@
-"""Growth fitting: exact on synthetic modes, the automatic window, the CLI on a real run.
+"""Growth fitting: exact on synthetic modes, and the automatic window.
 
 Synthetic data: eight fields carrying the same fastest mode, plus a damped mode (the start-up
 transient of a run, like the drag-relaxation modes of the linear theory) in different
 proportions per field, so the fields' growth rates over the whole run disagree and agree once
-the transient has decayed.
+the transient has decayed. The command line on a real run: ``particles/test_streaming.py``.
 """
-
-import json
 
 import numpy as np
 import pytest
 
 from dustygas.analysis.growth import MODE_FIELDS, fit_growth, linear_window, measure_growth
 from dustygas.errors import UserError
-
-from foundation._cli import cli
 
 S, W = 0.419, 0.348  # the mode: A ~ exp(-i (W + i S) t)
 S2, W2 = -3.0, 2.0
@@ -59,21 +55,3 @@ def test_window_ends_before_the_mode_turns_non_linear():
     assert end == pytest.approx(np.log(0.01 / 2.2e-6) / S, abs=0.02)
     with pytest.raises(UserError, match="fewer than three"):
         fit_growth(t[:2], modes["ux"][:2])
-
-
-def test_cli_analyze_growth_on_a_run(tmp_path):
-    from dustygas import api
-
-    api.run("si-linA", output=tmp_path / "run", set=["grid.nx=16", "grid.nz=16", "run.tlim=1.0",
-                                                      "run.dt_history=0.02"])
-    res = cli("analyze", "growth", "run", "--json", cwd=tmp_path)
-    assert res.returncode == 0, res.stderr
-    out = json.loads(res.stdout)
-    assert set(out["fields"]) == set(MODE_FIELDS)
-    assert out["theory"]["growth_rate"] == pytest.approx(0.4190091323, rel=1e-9)
-    # 16 cells per wavelength: the mode grows, within 10 % of theory (measured -4 %)
-    assert out["growth_rate"] == pytest.approx(0.419, rel=0.1)
-    text = cli("analyze", "growth", "run", cwd=tmp_path)
-    assert text.returncode == 0 and "linear theory" in text.stdout
-    bad = cli("analyze", "growth", "nowhere", cwd=tmp_path)
-    assert bad.returncode == 2 and bad.stderr.count("\n") == 1

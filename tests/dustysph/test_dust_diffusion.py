@@ -1,13 +1,14 @@
-"""Acceptance 4: dust diffusion (Price & Laibe 2015) in Phantom's set-up with L2 <= 2.6e-3 at every step."""
+"""Dust diffusion (Price & Laibe 2015) in Phantom's set-up with L2 <= 2.6e-3 at every step."""
 
 import numpy as np
 import pytest
 
-from dustygas.problems.dust_diffusion import diffusion_exact, l2_error
+from dustygas.physics.exact import dust_diffusion
+from dustygas.problems.dust_diffusion import l2_error
 
 from ._run import advance_to, build
 
-PHANTOM_TOL = 2.6e-3  # numbers.md §3 (Phantom measured 2.553e-3)
+PHANTOM_TOL = 2.6e-3  # Phantom's test tolerance (its own error 2.553e-3)
 
 
 def _max_l2(*overrides):
@@ -23,11 +24,11 @@ def test_exact_solution_initial_profile():
     """At t = 0 the exact solution is eps0 (1 - r^2/r_c^2) inside r_c and 0 outside; its dust mass
     integral is conserved: int eps dV = (8 pi/15) eps0 r_c^3 at t = 0 and t = 10 (to 1e-6, quadrature)."""
     r = np.linspace(0.0, 0.5, 6)
-    np.testing.assert_allclose(diffusion_exact(r, 0.0, 0.1, 0.1, 0.25),
+    np.testing.assert_allclose(dust_diffusion(r, 0.0, eta=0.1, eps0=0.1, r_c=0.25),
                                np.maximum(0.1 * (1 - r**2 / 0.0625), 0.0), atol=1e-16)
     rr = np.linspace(0.0, 1.0, 400001)
     for t in (0.0, 10.0):
-        integral = np.trapezoid(4 * np.pi * rr**2 * diffusion_exact(rr, t, 0.1, 0.1, 0.25), rr)
+        integral = np.trapezoid(4 * np.pi * rr**2 * dust_diffusion(rr, t, eta=0.1, eps0=0.1, r_c=0.25), rr)
         assert integral == pytest.approx(8 * np.pi / 15 * 0.1 * 0.25**3, rel=1e-6)
 
 

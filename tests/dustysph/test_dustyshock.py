@@ -1,4 +1,4 @@
-"""Acceptance 3: the dusty shock tube at K = 1000 approaches the K -> infinity star state within 2 %."""
+"""The dusty shock tube at K = 1000 approaches the K -> infinity star state within 2 %."""
 
 import numpy as np
 import pytest
@@ -9,8 +9,8 @@ from dustygas.sph import DUST, GAS
 from ._run import advance_to, build
 
 
-def test_asymptotic_star_state_is_numbers_md():
-    """The K -> infinity solution is numbers.md §3's: P* = 0.29395, u* = 0.59481, rho*_L = 0.95938,
+def test_asymptotic_star_state_is_the_published_one():
+    """The K -> infinity solution (Laibe & Price 2012, mixture as one gas): P* = 0.29395, u* = 0.59481, rho*_L = 0.95938,
     rho*_R = 0.45961, shock speed 1.30424 (to the 5 digits printed)."""
     prob, cfg, _ = build("dustyshock", "problem.nx=16")
     s = prob.asymptotic_solution(cfg)

@@ -1,4 +1,4 @@
-"""Acceptance 6: the growth box follows Vericel et al. (2021) to 5e-4 for growth and fragmentation; sizes
+"""The growth box follows Vericel et al. (2021) to 5e-4 for growth and fragmentation; sizes
 never go negative near the minimum size; advection of sizes with the exchanged dust (eqs. 3.11-3.14)."""
 
 import numpy as np

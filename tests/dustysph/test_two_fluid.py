@@ -1,9 +1,10 @@
 """Two-fluid drag: consistency with dustygas.physics, conservation laws of the pair forms, determinism,
 restarts through the run loop."""
 
-import numba
 import numpy as np
 import pytest
+
+from _threads import assert_identical, results_at_threads
 
 from dustygas import api
 from dustygas.io.rundir import RunDirectory
@@ -96,18 +97,18 @@ def test_projected_drag_torque_free_nonprojected_not():
     assert torques["projected"] < 1e-13 and torques["non-projected"] > 1e-3, torques
 
 
-def test_results_independent_of_thread_count():
-    """Every pair sum gathers per particle: one and two threads give bit-identical two-fluid states
-    after 5 steps with reconstruction (random cloud)."""
-    states = []
-    for threads in (1, 2):
-        numba.set_num_threads(threads)
-        eng = _cloud("projected", "mc")
-        for _ in range(5):
-            eng.advance(eng.timestep())
-        states.append((eng.particles.pos.copy(), eng.particles.vel.copy(), eng.particles.u.copy()))
-    for a, b in zip(*states):
-        np.testing.assert_array_equal(a, b)
+def thread_case() -> dict:
+    """Five steps of the random two-fluid cloud with reconstruction."""
+    eng = _cloud("projected", "mc")
+    for _ in range(5):
+        eng.advance(eng.timestep())
+    return {"pos": eng.particles.pos, "vel": eng.particles.vel, "u": eng.particles.u}
+
+
+def test_results_independent_of_thread_count(tmp_path):
+    """Every pair sum gathers per particle: one and two threads (each in its own interpreter) give
+    bit-identical two-fluid states after 5 steps with reconstruction (random cloud)."""
+    assert_identical(results_at_threads("dustysph.test_two_fluid:thread_case", tmp_path))
 
 
 @pytest.mark.parametrize("problem, overrides", [

@@ -1,4 +1,4 @@
-"""Shearing box: epicycles (acceptance 3), conservation and the y-momentum budget (acceptance 4),
+"""Shearing box: epicycles, conservation and the y-momentum budget,
 the pressure-gradient force and vertical gravity.
 
 The y-momentum budget. With shear-periodic radial boundaries the flux through the outer face at

@@ -1,4 +1,4 @@
-"""The vortical shearing wave through its swing (acceptance 5 of issue 4).
+"""The vortical shearing wave through its swing.
 
 Reference: Kelvin's incompressible solution (:mod:`dustygas.physics.shearing_sheet`), which the
 compressible gas of the default problem follows to 0.15 % of the peak amplitude (box of H/4,

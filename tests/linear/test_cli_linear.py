@@ -1,10 +1,13 @@
 """``dustygas linear``: output, the JSON contract, files written, one-line errors."""
 
 import json
+import re
 
 import h5py
 import numpy as np
 import pytest
+
+from dustygas.linear import StreamingParams, operator_matrix
 
 from foundation._cli import cli
 
@@ -17,11 +20,17 @@ def _one_line_error(proc, fragment):
 
 
 def test_mode_text_prints_linA(tmp_path):
+    """With YJ07's drag linearisation the printed mode is Youdin & Johansen (2007) Table 1's linA to the
+    seven digits they publish: omega = 0.3480127 + 0.4190204i (standard sign), u_x = -0.1691398 + 0.0361553i."""
     proc = cli("linear", "mode", "--taus", "0.1", "--eps", "3", "--kx", "30", "--kz", "30", "--drag", "yj07",
                cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
-    assert "+0.4190204302" in proc.stdout and "+0.3480127323" in proc.stdout
-    assert "ux        -0.1691398 +0.0361553i" in proc.stdout
+    number = r"([+-]\d+\.\d+)"
+    growth = float(re.search(r"s = Im omega = " + number, proc.stdout).group(1))
+    frequency = float(re.search(r"Re omega = " + number, proc.stdout).group(1))
+    ux = re.search(r"ux\s+" + number + r"\s*" + number + "i", proc.stdout)
+    assert abs(growth - 0.4190204) <= 5e-8 and abs(frequency - 0.3480127) <= 5e-8, proc.stdout
+    assert abs(float(ux.group(1)) + 0.1691398) <= 5e-8 and abs(float(ux.group(2)) - 0.0361553) <= 5e-8
 
 
 def test_mode_json_contract(tmp_path):
@@ -66,8 +75,17 @@ def test_map_writes_hdf5_json_png(tmp_path):
     assert proc.returncode == 0, proc.stderr
     with h5py.File(tmp_path / "out" / "growth_map.h5") as f:
         assert list(f.attrs["kx_range"]) == [1.0, 1000.0] and f.attrs["kz"] == 30.0
-        g = f["growth_rate"][()]
+        g, kx, taus, mu = (f[k][()] for k in ("growth_rate", "kx", "taus", "mu"))
     assert g.shape == (6, 6) and np.all(np.isfinite(g))
+    # every cell is the fastest mode over K_x at K_z = 30: LAPACK's eigenvalues of the operator at the
+    # reported K_x give the reported rate (1e-9), and K_x 1 % either side grows no faster (1e-9)
+    def lapack(i, j, k):  # rows are tau_s, columns mu (the printed maximum: tau_s = 0.6049, mu = 10)
+        params = StreamingParams(taus=float(taus[i]), mu=float(mu[j]), kx=float(k), kz=30.0, Pi=0.05)
+        return np.linalg.eigvals(operator_matrix(params)).real.max()
+
+    for i, j in [(0, 0), (2, 3), (4, 5), (5, 1)]:
+        assert lapack(i, j, kx[i, j]) == pytest.approx(g[i, j], rel=1e-9, abs=1e-12)
+        assert max(lapack(i, j, kx[i, j] * 0.99), lapack(i, j, kx[i, j] * 1.01)) <= g[i, j] * (1 + 1e-9)
     assert (tmp_path / "out" / "growth_map.png").stat().st_size > 10_000
     assert json.loads((tmp_path / "out" / "growth_map.json").read_text())["attrs"]["kz"] == 30.0
     _one_line_error(cli("linear", "map", "--method", "spiral", "-o", "o2", cwd=tmp_path), "method")
@@ -83,6 +101,13 @@ def test_shear_writes_csv_png(tmp_path):
     names = [ln for ln in text if not ln.startswith("#")][0].split(",")
     assert names[:2] == ["t", "kx"] and "abs_drho_p_0" in names
     amp = float(proc.stdout.split()[2])
-    assert amp > 0
+    rows = [ln.split(",") for ln in text if not ln.startswith("#")][1:]
+    drho_p = np.array([float(r[names.index("abs_drho_p_0")]) for r in rows])
+    assert amp == pytest.approx(drho_p[-1] / drho_p[0], rel=1e-7)  # the printed number is the file's
+    # k_y = 0: no shear of the wave, the linA eigenmode grows at Benitez-Llambay et al. (2019)'s s = 0.4190091323
+    flat = cli("linear", "shear", "--taus", "0.1", "--eps", "3", "--kx", "30", "--ky", "0", "--kz", "30",
+               "--t-end", "3", "-o", "sw0", cwd=tmp_path)
+    assert flat.returncode == 0, flat.stderr
+    assert float(flat.stdout.split()[2]) == pytest.approx(np.exp(3 * 0.4190091323), rel=1e-7)
     _one_line_error(cli("linear", "shear", "--taus", "0.1", "--eps", "3", "--kx", "30", "--ky", "5", cwd=tmp_path),
                     "t_span is needed")

@@ -3,6 +3,8 @@
 import csv
 import json
 
+import h5py
+
 import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
@@ -15,6 +17,27 @@ def test_fig4_1_to_4_3_and_settling_map(tmp_path):
     for name in ("fig4.1", "fig4.2", "fig4.3", "fig4.3-settling"):
         paths = get_figure(name).function(tmp_path, quick=True)
         assert paths[0].suffix == ".png" and paths[0].stat().st_size > 20_000
+    # Fig 4.1 (YG05: incompressible, max over K_x at K_z = 1000): at cells spanning the map the saved rate
+    # is LAPACK's largest eigenvalue of the operator at the saved (K_x, K_z) (1e-8), and K_x 1 % either
+    # side grows no faster
+    with h5py.File(tmp_path / "fig4_1.h5") as f:
+        g, kx, kz, taus, mu = (f[k][()] for k in ("growth_rate", "kx", "kz", "taus", "mu"))
+
+    def incompressible(i, j, k):
+        p = StreamingParams(taus=float(taus[i]), mu=float(mu[j]), kx=float(k), kz=float(kz[i, j]), Pi=0.0)
+        return np.linalg.eigvals(operator_matrix(p)).real.max()
+
+    assert np.all(kz == 1000.0)
+    for i, j in [(0, 0), (20, 40), (45, 10), (59, 59)]:
+        assert incompressible(i, j, kx[i, j]) == pytest.approx(g[i, j], rel=1e-8)
+        assert max(incompressible(i, j, 0.99 * kx[i, j]), incompressible(i, j, 1.01 * kx[i, j])) <= g[i, j] * (1 + 1e-9)
+    # the settling map is thesis eq. 4.20, t_growth/t_settle = (Omega/s) tau_s/(2 tau_s^2 + 1), of its growth rates
+    with h5py.File(tmp_path / "fig4_3_settling.h5") as f:
+        s_set, ratio, taus_set = f["growth_rate"][()], f["t_growth_over_t_settle"][()], f["taus"][()]
+    grows = s_set > 0
+    expected = (1 / s_set[grows]) * np.broadcast_to((taus_set / (2 * taus_set**2 + 1))[:, None], s_set.shape)[grows]
+    np.testing.assert_allclose(ratio[grows], expected, rtol=1e-14)
+    assert grows.sum() > 0.5 * grows.size and (ratio[grows] < 1).any() and (ratio[grows] > 1).any()
     # Fig 4.2: the unsettled τ_s = 1, μ = 0.1 curve peaks where an independent maximisation finds the fastest
     # mode: LAPACK eigenvalues of the operator along θ_k = 30°, maximised over ln K by scipy (K = 1.9299,
     # s = 0.0964774). The figure samples 2500 points over 7 decades (one step = a factor 1.0065 in K), so its

@@ -1,4 +1,4 @@
-"""Momentum conservation of gas + particles (thesis eq. 4.25; issue 5 acceptance 3).
+"""Momentum conservation of gas + particles (thesis eq. 4.25).
 
 A periodic box without rotation or external force: random gas (density and velocity) and
 randomly placed particles of two species (one with a fixed stopping time, one with Epstein

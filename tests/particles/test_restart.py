@@ -4,7 +4,7 @@ The engine's checkpoint has the gas state, every particle array in its sorted or
 back-reaction carried from one step to the next; the fast test stops a small si-linA run
 with ``run.max_cycles`` (the run loop checkpoints), restarts it, and compares every snapshot
 and history array with an uninterrupted run, exactly. (The SIGKILL version on the full linA
-run, issue 5 acceptance 6, is in ``test_streaming_slow.py``.)
+run is in ``test_streaming_slow.py``.)
 """
 
 from _runs import assert_runs_identical, run_outputs

@@ -1,4 +1,4 @@
-"""Linear streaming-instability growth in the particle-gas engine (issue 5 acceptance 2 and 6).
+"""Linear streaming-instability growth in the particle-gas engine at 64² (slow).
 
 linA (Youdin & Johansen 2007): τ_s = 0.1, ε = 3, K = 30, 64², one particle per cell, t = 0 → 6.
 Linear theory (consistent linearisation of fixed-t_s drag, what the engine integrates):

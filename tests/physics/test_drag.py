@@ -21,7 +21,7 @@ def test_epstein_stopping_time_hand_computed():
 
 
 def test_epstein_K_and_mixture_stopping_time():
-    """t_s = rho_d/K for one grain; rho_g rho_d/(K (rho_g+rho_d)) for the mixture (numbers.md §3)."""
+    """t_s = rho_d/K for one grain; rho_g rho_d/(K (rho_g+rho_d)) for the mixture (Laibe & Price 2011, the dustybox)."""
     s, rho_grain, rho_g, rho_d, c_s = 0.01, 2.6, 3e-10, 1e-10, 7e4
     K = drag.epstein_drag_coefficient(rho_g, rho_d, s, rho_grain, c_s)
     np.testing.assert_allclose(drag.epstein_stopping_time(s, rho_grain, rho_g, c_s), rho_d / K, rtol=1e-14)

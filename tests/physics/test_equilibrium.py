@@ -5,7 +5,8 @@ import pytest
 
 from dustygas.physics import nsh_velocities, nsh_velocities_multi
 
-# Youdin & Johansen (2007) set-ups as printed in numbers.md §1 (8 decimals, units eta*v_K).
+# Nakagawa, Sekiya & Hayashi (1986) at Youdin & Johansen (2007)'s linA/linB parameters, worked out to 8 decimals
+# (units eta v_K; D = (1+eps)^2 + tau^2, U = (2 eps tau, -(1+eps+tau^2))/D, W = (-2 tau, -(1+eps))/D)
 PUBLISHED = {
     "linA": (0.1, 3.0, (+0.03747658, -0.25046846), (-0.01249219, -0.24984385)),
     "linB": (0.1, 0.2, (+0.02758621, -0.83448276), (-0.13793103, -0.82758621)),
@@ -14,7 +15,7 @@ PUBLISHED = {
 
 @pytest.mark.parametrize("case", sorted(PUBLISHED))
 def test_nsh_matches_published_linA_linB(case):
-    """numbers.md §1 prints 8 decimals, so the exact values lie within 5e-9 of them (< 1e-8)."""
+    """Printed to 8 decimals, so the exact values lie within 5e-9 of them (< 1e-8)."""
     taus, mu, gas, dust = PUBLISHED[case]
     eq = nsh_velocities(taus, mu)
     got = [float(eq.gas_vx), float(eq.gas_vy), float(eq.dust_vx), float(eq.dust_vy)]

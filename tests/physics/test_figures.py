@@ -4,7 +4,6 @@ import numpy as np
 import pytest
 
 from dustygas.physics import drag, growth
-from dustygas.physics.disk import radial_drift_velocity
 from dustygas.plot import Column, new_figure, read_table, save_figure
 from dustygas.reproduce import get_figure
 from dustygas.reproduce.fig3_1 import DISKS, V_FRAG
@@ -22,13 +21,17 @@ def _written(paths, stem):
 
 
 def test_fig3_5_data_is_eq_3_23(tmp_path):
-    """Columns equal -v_r/v_K of eq. 3.23 with eta = 7.5e-3, v_r,gas/v_K = -3.75e-5 (to 1e-15);
-    the sampled maximum sits at the analytic peak tau* = 0.99501 within the grid spacing."""
+    """Columns equal -v_r/v_K of eq. 3.23 as the thesis prints it, (v_r,g/tau_s - eta v_K)/(tau_s + 1/tau_s),
+    with eta = 7.5e-3, v_r,gas/v_K = -3.75e-5 (to 1e-13; the code evaluates the rearranged form); at
+    the ends of the range it is -v_r,g + eta tau_s (tau_s << 1) and eta/tau_s (tau_s >> 1) to 1e-5,
+    and the sampled maximum sits at the analytic peak tau* = 0.99501 within the grid spacing."""
     data = _written(get_figure("fig3.5").function(tmp_path), "fig3_5")
     taus = data["tau_s"]
     assert taus[0] == pytest.approx(1e-3) and taus[-1] == pytest.approx(1e3) and taus.size >= 200
-    np.testing.assert_allclose(data["minus_vr_over_vK"], -radial_drift_velocity(taus, 7.5e-3, 1.0, -3.75e-5),
-                               rtol=1e-15)
+    printed = -(-3.75e-5 / taus - 7.5e-3) / (taus + 1 / taus)  # thesis eq. 3.23, v_K = 1
+    np.testing.assert_allclose(data["minus_vr_over_vK"], printed, rtol=1e-13)
+    assert data["minus_vr_over_vK"][0] == pytest.approx(3.75e-5 + 7.5e-3 * 1e-3, rel=1e-5)
+    assert data["minus_vr_over_vK"][-1] == pytest.approx(7.5e-3 / 1e3, rel=1e-5)
     np.testing.assert_allclose(data["minus_vr_gas_over_vK"], 3.75e-5, rtol=1e-15)
     a, b = 3.75e-5, 7.5e-3
     tau_star = (np.hypot(a, b) - a) / b
@@ -46,7 +49,7 @@ def test_fig3_1_data_are_the_roots_and_drift_sizes(tmp_path):
     for model in DISKS:
         lab = model.label
         s_drift = data[f"{lab}_s_drift"]
-        np.testing.assert_allclose(s_drift, growth.drift_size_midplane(data[f"{lab}_Sigma"], model.rho_grain), rtol=1e-13)
+        np.testing.assert_allclose(s_drift, data[f"{lab}_Sigma"] / (np.sqrt(2 * np.pi) * model.rho_grain), rtol=1e-13)
         np.testing.assert_allclose(data[f"{lab}_s_unit_stokes"], np.sqrt(8 / np.pi) * s_drift, rtol=1e-13)
         np.testing.assert_allclose(s_drift * r ** model.p, s_drift[0] * r[0] ** model.p, rtol=1e-12)
         c_s = data[f"{lab}_c_s"]
@@ -82,7 +85,7 @@ def test_reproduce_command_writes_both_figures(tmp_path):
     proc = cli("reproduce", "fig3.1", "fig3.5", "--output", "figs", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     names = sorted(p.name for p in (tmp_path / "figs").iterdir())
-    assert names == ["fig3_1.csv", "fig3_1.png", "fig3_5.csv", "fig3_5.png"]
+    assert names == ["fig3_1.csv", "fig3_1.png", "fig3_5.csv", "fig3_5.png", "gallery", "index.html"]
     peak = read_table(tmp_path / "figs" / "fig3_5.csv")["minus_vr_over_vK"].max()
     np.testing.assert_allclose(peak, (np.hypot(3.75e-5, 7.5e-3) + 3.75e-5) / 2, rtol=1e-3)
 

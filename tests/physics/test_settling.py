@@ -15,14 +15,10 @@ TAUS = np.array([1.0, 0.1, 0.01, 0.001])
 def test_growth_settling_criterion_values():
     """Criterion 4.20, tau/(2 tau^2 + 1), at tau_s = 1, 0.1, 0.01, 0.001.
 
-    Exact: 1/3, 0.1/1.02 = 0.0980392157, 0.01/1.0002 = 0.0099980004, 0.001/1.000002 = 0.000999998.
-    Issue 2 quotes 1/3, 0.098, 0.0099998, 0.001. Its 0.098 is rounded (4.0e-4 relative), and its
-    third value looks like a digit transposition of 0.0099980 (1.8e-4 relative); both lie within
-    rtol = 5e-4, which the rounding of 0.098 needs, so the issue's numbers are asserted at that
-    tolerance and the exact formula values at 1e-15.
+    Exact, by hand: 1/3, 0.1/1.02 = 0.0980392157, 0.01/1.0002 = 0.0099980004, 0.001/1.000002 =
+    0.000999998 (to 1e-15).
     """
     got = growth_settling_threshold(TAUS)
-    np.testing.assert_allclose(got, [1 / 3, 0.098, 0.0099998, 0.001], rtol=5e-4)
     np.testing.assert_allclose(got, [1 / 3, 0.1 / 1.02, 0.01 / 1.0002, 0.001 / 1.000002], rtol=1e-15)
 
 

@@ -28,7 +28,7 @@ def _lattice_density_exact(kernel, hfact, pos, box_length, mass):
 @pytest.mark.parametrize("ndim,n", [(1, 64), (2, 24), (3, 12)])
 @pytest.mark.parametrize("kernel", ["cubic", "quintic"])
 def test_cubic_lattice_gives_the_exact_uniform_density(ndim, n, kernel):
-    """Acceptance 1: after the h iteration (tolerance 1e-6 on h; guesses 20-30 % off) every particle
+    """After the h iteration (tolerance 1e-6 on h; guesses 20-30 % off) every particle
     of a periodic cubic lattice has the density of the exact lattice sum to 1e-10, and that density
     is the lattice's m/dx^d to the kernel's own discretisation error (< 1 %). With the default
     tolerance 1e-4 the residual is ~1e-8 (Newton converges quadratically from the last step)."""

@@ -1,4 +1,4 @@
-"""Bad set-ups stop with one line and a dump (acceptance 4); run loop, restarts and the CLI."""
+"""Bad set-ups stop with one line and a dump; run loop, restarts and the CLI."""
 
 import numpy as np
 import pytest

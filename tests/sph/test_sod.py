@@ -1,4 +1,4 @@
-"""Exact Riemann solver against published values; the SPH Sod shock tube against it (acceptance 2)."""
+"""Exact Riemann solver against published values; the SPH Sod shock tube against it."""
 
 import numpy as np
 import pytest
@@ -18,7 +18,7 @@ def test_exact_solver_toro_test1():
 
 
 def test_exact_solver_dustyshock_mixture():
-    """numbers.md sect. 3 (Laibe & Price 2012, K -> infinity dusty shock as one gas, gamma = 5/3):
+    """Laibe & Price (2012), K -> infinity dusty shock as one gas, gamma = 5/3 (Toro 2009 exact solver):
     P* = 0.29395, u* = 0.59481, rho*_L = 0.95938, rho*_R = 0.45961, shock speed 1.30424."""
     s = RiemannSolution(2.0, 0.0, 1.0, 0.25, 0.0, 0.1, 5.0 / 3.0)
     got = [s.p_star, s.u_star, s.rho_star_left, s.rho_star_right, s.shock_speed_right]
@@ -88,7 +88,7 @@ def test_viscosity_switches_on_the_shock(switch):
 
 @pytest.mark.slow
 def test_sod_3d_matches_phantom_at_the_same_resolution():
-    """Acceptance 2: Phantom's own shock-tube set-up (hexagonal-close-packed tube, 64 particles in
+    """Phantom's own shock-tube set-up (hexagonal-close-packed tube, 64 particles in
     -0.5 < x < 0, 24 x 24 rows across on the left, quintic kernel, gamma = 5/3, t = 0.2) run with
     Phantom v2026.0.1 on this machine gives L1(rho) = 0.00746, L1(v_x) = 0.01152, L1(P) = 0.00652
     (benchmarks/RESULTS.md). The same tube here must do at least as well (measured 0.00671, 0.00974,

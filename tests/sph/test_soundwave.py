@@ -1,4 +1,4 @@
-"""Sound waves converge at second order (acceptance 2), in 1D and 3D, for both force forms."""
+"""Sound waves converge at second order, in 1D and 3D, for both force forms."""
 
 import numpy as np
 import pytest

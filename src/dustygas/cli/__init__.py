@@ -23,6 +23,8 @@ COMMANDS: dict[str, str] = {
     "info": "dustygas.cli.info",
     "linear": "dustygas.cli.linear",
     "analyze": "dustygas.cli.analyze",
+    "export": "dustygas.cli.export",
+    "plot": "dustygas.cli.plot",
 }
 
 

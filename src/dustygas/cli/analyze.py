@@ -5,11 +5,13 @@ from __future__ import annotations
 import argparse
 import json
 
-HELP = "analyse a run directory (growth of the recorded linear mode)"
+HELP = "analyse a run directory (growth of the recorded linear mode; bound clumps)"
 DESCRIPTION = """Analyse a run directory.
 
   dustygas analyze growth runs/si-linA            growth rate, frequency, fit window
   dustygas analyze growth runs/si-linA --json     the same as a JSON object
+  dustygas analyze clumps RUN                     bound clumps and their mass function
+                                                  (dustygas analyze clumps --help)
 
 growth: fits ln|A| and arg A of the complex Fourier amplitude A(t) of the run's mode for the
 eight fields (gas drho_g ux uy uz, dust drho_p wx wy wz; written to history.h5 by the
@@ -34,14 +36,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument("--fields", nargs="+", metavar="FIELD", help="fields to fit (default: all eight)")
     g.add_argument("--nonlinear", type=float, default=0.01, help="relative density amplitude that ends the window")
     g.add_argument("--agree", type=float, default=0.005, help="relative agreement of the fields that starts it")
+    from . import analyze_clumps
+
+    analyze_clumps.add_arguments(sub)
 
 
 def main(args: argparse.Namespace) -> int:
     from ..analysis.growth import MODE_FIELDS, measure_growth, theory_for_run
     from ..errors import UserError
 
+    if args.analyze_command == "clumps":
+        from . import analyze_clumps
+
+        return analyze_clumps.main(args)
     if args.analyze_command != "growth":
-        raise UserError("analyze: name a subcommand: growth (see dustygas analyze --help)")
+        raise UserError("analyze: name a subcommand: growth or clumps (see dustygas analyze --help)")
     fit = measure_growth(args.run, window=args.window, fields=args.fields or MODE_FIELDS,
                          nonlinear=args.nonlinear, agree=args.agree)
     fit.theory = theory_for_run(args.run)

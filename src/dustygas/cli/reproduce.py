@@ -5,12 +5,21 @@ from __future__ import annotations
 import argparse
 import inspect
 import sys
-import time
 from pathlib import Path
 
 from ..errors import UserError
 
-HELP = "regenerate thesis figures (PNG + the numbers behind them)"
+HELP = "regenerate thesis figures (PNG + the numbers behind them, checks, DIR/index.html)"
+DESCRIPTION = """Regenerate thesis figures into DIR (default: figures).
+
+  dustygas reproduce --list               the registered figures
+  dustygas reproduce fig3.5 fig4.2        two figures
+  dustygas reproduce --all -o figures     every registered figure
+
+Each figure writes its PNG and the numbers behind it (CSV, HDF5 or JSON); its quantitative
+checks (numbers against published or analytic values) are printed, and DIR/index.html shows
+every figure made into DIR beside its thesis caption, its checks and its data. The exit status
+is 1 if a check failed or a figure could not be made."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -49,8 +58,20 @@ def main(args: argparse.Namespace) -> int:
     if out.exists() and not out.is_dir():
         raise UserError(f"--output {out}: exists and is not a directory")
     out.mkdir(parents=True, exist_ok=True)
-    for spec in specs:
-        t0 = time.perf_counter()
-        paths = spec.function(out, quick=not args.full, **({"runs": runs} if runs else {}))
-        print(f"{spec.name}: {', '.join(str(p) for p in paths)} ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
-    return 0
+    from ..reproduce.gallery import make_figures
+
+    def log(record) -> None:
+        files = ", ".join(str(out / f) for f in record.files)
+        print(f"{record.name}: {files} ({record.wall:.1f} s)", file=sys.stderr)
+        if record.error:
+            print(f"{record.name}: FAILED: {record.error}", file=sys.stderr)
+        for c in record.checks:
+            verdict = "PASS" if c["passed"] else "FAIL"
+            exp = c["expected"] if isinstance(c["expected"], str) else f"{c['expected']:.6g}"
+            print(f"  {verdict} {c['name']}: {c['value']:.6g} vs {exp} ({c['tolerance']})", file=sys.stderr)
+
+    records = make_figures([s.name for s in specs], out, quick=not args.full, log=log, runs=runs)
+    failed = [r.name for r in records if not r.passed]
+    print(f"gallery: {out / 'index.html'} ({len(records)} figures"
+          f"{', failed: ' + ' '.join(failed) if failed else ''})", file=sys.stderr)
+    return 1 if failed else 0

@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import SetupError, SimulationError, UserError
 from .boundaries import fill_ghosts, make_boundaries
 from .diagnostics import domain_sums, max_signal_rate
-from .integrator import INTEGRATORS, advance_gas, integrator_tables
+from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tables
 from .mesh import Mesh
 from .reconstruct import LIMITERS, RECONSTRUCTIONS
 from .riemann import RIEMANN_SOLVERS
@@ -137,7 +137,7 @@ class GridEngine:
                 raise SetupError(f"{name} '{value}' unknown: choose one of {', '.join(table)}")
         if not cs > 0:
             raise SetupError(f"sound speed cs={cs}: must be positive")
-        limit = 1.0 / mesh.ndim  # unsplit: the Courant numbers of the axes add up (a diagonal wave)
+        limit = courant_limit(mesh.ndim)
         if not 0 < cfl <= limit:
             raise SetupError(f"cfl={cfl}: {integrator} in {mesh.ndim}D is stable for 0 < cfl <= {limit:g}")
         for n, g, axis in zip(mesh.shape, mesh.ghosts, "xyz"):

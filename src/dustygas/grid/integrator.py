@@ -25,8 +25,8 @@ VL2 is second order and stable to Courant number 0.5 in 2D and 3D; it is the int
 Athena's particle-gas runs (Bai & Stone 2010a). RK3 is third order in time, so that PPM
 reaches its spatial order on smooth problems; it costs three full stages per step.
 
-Hook for the particles (issue 5)
---------------------------------
+Hook for the particles
+----------------------
 A drag back-reaction enters as the external momentum source ``S_ext`` of a stage, a
 ``(3, nz, ny, nx)`` array of momentum per unit volume and time on the domain cells, added with
 the stage's weight ``f dt`` in the first sweep. For VL2 (Bai & Stone 2010a, §2.3):
@@ -56,7 +56,7 @@ from .orbital_advection import remap_columns
 from .reconstruct import DONOR
 from .sweep import pencil_count, sweep_pencils
 
-__all__ = ["INTEGRATORS", "integrator_tables", "advance_gas"]
+__all__ = ["INTEGRATORS", "courant_limit", "integrator_tables", "advance_gas"]
 
 #: name -> number of state slots it needs
 INTEGRATORS = {"vl2": 2, "rk2": 2, "rk3": 3}
@@ -66,6 +66,22 @@ KEEP = -1  # reconstruction column: use the scheme's reconstruction
 #: 2D x-y boxes with at least this many cells along y remap their radial ghosts and fluxes in
 #: parallel (measured: ~3.5 ns per remapped value, ~2 us per parallel region)
 PARALLEL_REMAP_NY = 100
+
+
+def courant_limit(ndim: int) -> float:
+    """Largest Courant number per axis the engine accepts in ``ndim`` dimensions: ``1/ndim``.
+
+    The step is ``Δt = C / max_d((|v_d| + c_s)/Δx_d)`` (thesis eqs. 2.12-2.13). In an unsplit
+    update the Courant numbers of the axes add up for a wave along the diagonal, and the engine
+    keeps their sum at most 1: ``C <= 1`` in 1D, 1/2 in 2D, 1/3 in 3D (Stone & Gardiner 2009
+    quote 0.5 for their VL+CT in 3D; with this VL2, a diagonal sound wave in 3D grows without
+    bound at ``C = 0.38``). The ``scheme.cfl`` parameter shows and checks the same bound
+    (:data:`dustygas.grid.params.SCHEME`).
+
+    >>> courant_limit(1), courant_limit(2), round(courant_limit(3), 6)
+    (1.0, 0.5, 0.333333)
+    """
+    return 1.0 / ndim
 
 
 def integrator_tables(name: str) -> tuple[np.ndarray, np.ndarray]:

@@ -16,16 +16,16 @@ Code units of the shearing-box problems: Omega = c_s = H = 1 unless a problem sa
 
 from __future__ import annotations
 
-from ..config import Config, Param
+from ..config import Config, Limit, Param
 from ..errors import ConfigError
 from .boundaries import BOUNDARY_KINDS
 from .engine import GridEngine
-from .integrator import INTEGRATORS
+from .integrator import INTEGRATORS, courant_limit
 from .mesh import Mesh
 from .reconstruct import LIMITERS, RECONSTRUCTIONS
 from .riemann import RIEMANN_SOLVERS
 
-__all__ = ["GRID", "SCHEME", "GAS", "BOUNDARY", "SHEARING_BOX", "engine_from_config"]
+__all__ = ["GRID", "SCHEME", "GAS", "BOUNDARY", "SHEARING_BOX", "COURANT_LIMIT", "grid_ndim", "engine_from_config"]
 
 GRID: dict[str, Param] = {
     "nx": Param(64, "cells along x (radial); 1 makes the axis inactive", min=1),
@@ -36,6 +36,18 @@ GRID: dict[str, Param] = {
     "lz": Param(1.0, "box length along z", "H", min=0.0, min_open=True),
 }
 
+def grid_ndim(cfg: Config) -> int | None:
+    """Active dimensions of the mesh a ``[grid]`` section describes (missing counts are 1);
+    ``None`` without a ``[grid]`` section."""
+    if "grid" not in cfg:
+        return None
+    return max(1, sum(int(cfg.grid.get(n, 1)) > 1 for n in ("nx", "ny", "nz")))
+
+
+#: the Courant bound of :func:`~dustygas.grid.integrator.courant_limit` for the configured grid
+COURANT_LIMIT = Limit("1/ndim (1 in 1D, 0.5 in 2D, 1/3 in 3D)",
+                      lambda cfg: None if grid_ndim(cfg) is None else courant_limit(grid_ndim(cfg)))
+
 SCHEME: dict[str, Param] = {
     "integrator": Param("vl2", "time integrator (vl2: Stone & Gardiner 2009; rk2, rk3: SSP Runge-Kutta)",
                         choices=tuple(INTEGRATORS)),
@@ -43,8 +55,7 @@ SCHEME: dict[str, Param] = {
                             "Colella & Sekora 2008 extremum-preserving limiter)", choices=tuple(RECONSTRUCTIONS)),
     "limiter": Param("mc", "PLM slope limiter", choices=tuple(LIMITERS)),
     "riemann": Param("hlle", "Riemann solver", choices=tuple(RIEMANN_SOLVERS)),
-    "cfl": Param(0.4, "Courant number, per axis (stable up to 1/ndim: 0.5 in 2D, 1/3 in 3D)",
-                 min=0.0, max=1.0, min_open=True),
+    "cfl": Param(0.4, "Courant number, per axis", min=0.0, max=COURANT_LIMIT, min_open=True),
 }
 
 GAS: dict[str, Param] = {

@@ -7,7 +7,7 @@ the root group. Strings and numbers are stored as attributes; numpy arrays as da
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import h5py
 import numpy as np
@@ -30,8 +30,14 @@ def write_h5(
     arrays: Mapping[str, np.ndarray],
     attrs: Mapping[str, Any] | None = None,
     compression: str | None = None,
+    annotate: Callable[[h5py.File], None] | None = None,
 ) -> None:
-    """Write ``arrays`` (datasets) and ``attrs`` (root attributes) to ``path`` atomically."""
+    """Write ``arrays`` (datasets) and ``attrs`` (root attributes) to ``path`` atomically.
+
+    ``annotate(file)``, if given, is called on the open file after the datasets are written and
+    before it is renamed into place (e.g. :func:`dustygas.io.schema.annotate_snapshot`, which adds
+    units, dimension labels and scales).
+    """
     with atomic_path(path) as tmp:
         with h5py.File(tmp, "w") as f:
             for key, value in (attrs or {}).items():
@@ -42,6 +48,8 @@ def write_h5(
                 if compression and value.size > 1024:
                     kwargs = {"compression": compression, "shuffle": True}
                 f.create_dataset(key, data=value, **kwargs)
+            if annotate is not None:
+                annotate(f)
 
 
 def read_h5(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, Any]]:

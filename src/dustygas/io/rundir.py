@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import UserError
 from .atomic import atomic_write_text
 from .hdf5 import read_h5, write_h5
+from .schema import annotate_history, annotate_snapshot
 
 __all__ = ["RunDirectory", "default_run_path"]
 
@@ -125,11 +126,11 @@ class RunDirectory:
 
     def write_snapshot(self, index: int, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any]) -> Path:
         path = self.snapshot_file(index)
-        write_h5(path, arrays, attrs)
+        write_h5(path, arrays, attrs, annotate=annotate_snapshot)
         return path
 
     def write_history(self, columns: Mapping[str, np.ndarray], attrs: Mapping[str, Any]) -> None:
-        write_h5(self.history_file, columns, attrs)
+        write_h5(self.history_file, columns, attrs, annotate=annotate_history)
 
     def write_checkpoint(
         self, index: int, arrays: Mapping[str, np.ndarray], attrs: Mapping[str, Any], keep: int = 2

@@ -73,10 +73,14 @@ from .interp import KERNEL_REACH, KERNELS, Cells
 from .push import CORRECT, EPSTEIN, FIXED, PREDICT, Forces, Species, deposit_density, particle_stage
 from .store import ParticleStore, cell_keys, counting_sort, slab_axis, slab_starts
 
-__all__ = ["ParticleGridEngine", "DRAG_LAWS"]
+__all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS"]
 
 #: name -> code of the stopping-time laws
 DRAG_LAWS = {"fixed": FIXED, "epstein": EPSTEIN}
+
+#: gas integrators the coupling supports: its drag is predicted and corrected with VL2's two
+#: stages (Bai & Stone 2010a, §2.3); the ``scheme.integrator`` of the particle problems offers these
+GAS_INTEGRATORS = ("vl2",)
 
 
 class ParticleGridEngine:
@@ -143,7 +147,7 @@ class ParticleGridEngine:
         rho_ref: float = 1.0,
         smooth: bool = True,
     ):
-        if gas.scheme_names["integrator"] != "vl2":
+        if gas.scheme_names["integrator"] not in GAS_INTEGRATORS:
             raise SetupError(f"particles need the vl2 gas integrator, not {gas.scheme_names['integrator']}")
         if kernel not in KERNELS:
             raise SetupError(f"particle kernel '{kernel}' unknown: choose one of {', '.join(KERNELS)}")

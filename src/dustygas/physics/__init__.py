@@ -5,7 +5,7 @@ units: cgs for dimensional quantities, dimensionless where the thesis is. Engine
 call these functions; no formula is written twice. Constants come from :mod:`dustygas.units`.
 
 Naming: ``mu`` is always the dust-to-gas ratio :math:`\\rho_d/\\rho_g` (thesis eq. 2.8; the
-":math:`\\epsilon`" of Youdin & Johansen 2007 and ``numbers.md``); ``dust_fraction``/``eps`` is
+":math:`\\epsilon`" of Youdin & Johansen 2007); ``dust_fraction``/``eps`` is
 always :math:`\\rho_d/(\\rho_d+\\rho_g)` (eq. 2.7). ``eta_armitage`` is the :math:`\\eta` of
 thesis eq. 3.24, ``eta_nakagawa`` the streaming-instability :math:`\\eta` (half of it).
 
@@ -26,113 +26,24 @@ growth
     (3.9-3.10), fragmentation sizes (3.9), Vericel et al. (2021) analytic growth.
 timestep
     Courant, acceleration and drag time-step criteria (eqs. 2.12-2.15).
+gravity
+    Self-gravity in the shearing box: G~ = 4πGρ/Ω², Hill density, radius and energy, Toomre's
+    Q and dispersion relation.
+exact, riemann, exact_riemann, shearing_sheet
+    Exact solutions of the test problems: sound wave, dusty box and dusty wave (Laibe & Price
+    2011), dust diffusion (Price & Laibe 2015), the hydrostatic dusty column; isothermal and
+    ideal-gas Riemann problems (Toro 2009); Kelvin's shearing wave. Not re-exported here.
+
+Every public name of the formula modules (``drag, disk, equilibrium, growth, settling,
+timestep``) is available from :mod:`dustygas.physics` itself.
 """
 
-from .disk import (
-    PowerLawDisk,
-    alpha_viscosity,
-    eta_armitage,
-    eta_nakagawa,
-    gas_azimuthal_velocity,
-    isothermal_sound_speed,
-    keplerian_angular_velocity,
-    keplerian_velocity,
-    midplane_density,
-    pressure_exponent,
-    radial_drift_velocity,
-    scale_height,
-    surface_density,
-    temperature,
-    viscous_radial_velocity,
-    viscous_radial_velocity_power_law,
-)
-from .drag import (
-    dust_fraction,
-    dust_to_gas_ratio,
-    epstein_drag_coefficient,
-    epstein_grain_size,
-    epstein_stopping_time,
-    fraction_to_ratio,
-    mean_free_path,
-    mixture_stopping_time,
-    ratio_to_fraction,
-    stokes_number,
-    stopping_time,
-    thermal_speed,
-)
-from .equilibrium import NSHEquilibrium, nsh_velocities, nsh_velocities_multi
-from .growth import (
-    alpha_tilde,
-    drift_size,
-    drift_size_midplane,
-    fragmentation_sizes,
-    fragmentation_stokes_numbers,
-    growth_rate,
-    growth_timescale,
-    relative_velocity,
-    stokes_number_growth,
-)
-from .settling import (
-    growth_settling_threshold,
-    growth_to_settling_ratio,
-    settling_time,
-    steady_settling_velocity,
-)
-from .timestep import acceleration_timestep, courant_timestep, drag_timestep, min_timestep
+from . import disk, drag, equilibrium, growth, settling, timestep
+from .disk import *  # noqa: F401,F403
+from .drag import *  # noqa: F401,F403
+from .equilibrium import *  # noqa: F401,F403
+from .growth import *  # noqa: F401,F403
+from .settling import *  # noqa: F401,F403
+from .timestep import *  # noqa: F401,F403
 
-__all__ = [
-    # equilibrium
-    "NSHEquilibrium",
-    "nsh_velocities",
-    "nsh_velocities_multi",
-    # settling
-    "settling_time",
-    "steady_settling_velocity",
-    "growth_settling_threshold",
-    "growth_to_settling_ratio",
-    # drag
-    "thermal_speed",
-    "epstein_drag_coefficient",
-    "epstein_stopping_time",
-    "epstein_grain_size",
-    "stokes_number",
-    "mean_free_path",
-    "mixture_stopping_time",
-    "stopping_time",
-    "dust_fraction",
-    "dust_to_gas_ratio",
-    "ratio_to_fraction",
-    "fraction_to_ratio",
-    # disk
-    "PowerLawDisk",
-    "surface_density",
-    "temperature",
-    "isothermal_sound_speed",
-    "keplerian_angular_velocity",
-    "keplerian_velocity",
-    "scale_height",
-    "midplane_density",
-    "pressure_exponent",
-    "eta_armitage",
-    "eta_nakagawa",
-    "gas_azimuthal_velocity",
-    "alpha_viscosity",
-    "viscous_radial_velocity",
-    "viscous_radial_velocity_power_law",
-    "radial_drift_velocity",
-    # growth
-    "alpha_tilde",
-    "relative_velocity",
-    "growth_rate",
-    "drift_size",
-    "drift_size_midplane",
-    "fragmentation_stokes_numbers",
-    "fragmentation_sizes",
-    "growth_timescale",
-    "stokes_number_growth",
-    # timestep
-    "courant_timestep",
-    "acceleration_timestep",
-    "drag_timestep",
-    "min_timestep",
-]
+__all__ = [*equilibrium.__all__, *settling.__all__, *drag.__all__, *disk.__all__, *growth.__all__, *timestep.__all__]

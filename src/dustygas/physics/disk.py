@@ -23,8 +23,8 @@ gives exactly :math:`v_{\\theta,g} = v_K(1 - \\eta)^{1/2}` (thesis eq. 3.25) wit
 
 (thesis eq. 3.24; Armitage 2013, §4.3): :func:`eta_armitage`. This is the :math:`\\eta` of the
 drift law eq. 3.23 and of thesis Figure 3.5. The streaming-instability literature
-(Nakagawa, Sekiya & Hayashi 1986; Youdin & Goodman 2005; Youdin & Johansen 2007;
-``numbers.md``) defines instead :math:`v_{\\theta,g} \\approx v_K(1 - \\eta_{\\rm YJ})`, i.e.
+(Nakagawa, Sekiya & Hayashi 1986; Youdin & Goodman 2005; Youdin & Johansen 2007)
+defines instead :math:`v_{\\theta,g} \\approx v_K(1 - \\eta_{\\rm YJ})`, i.e.
 :math:`\\eta_{\\rm YJ} = -\\tfrac12 (c_s/v_K)^2\\, d\\ln P/d\\ln r = \\eta/2` to first order
 (:func:`eta_nakagawa`); the headwind :math:`v_K - v_{\\theta,g}` is :math:`\\eta_{\\rm YJ}v_K`
 and the shearing-box pressure force is :math:`2\\eta_{\\rm YJ}v_K\\Omega`. In

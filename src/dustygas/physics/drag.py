@@ -4,8 +4,8 @@ Naming, used throughout :mod:`dustygas`
 ---------------------------------------
 ``mu`` is **always** the dust-to-gas density ratio :math:`\\mu = \\rho_d/\\rho_g` (thesis eq.
 2.8), and ``dust_fraction`` / ``eps`` is **always** the dust fraction of the total density
-:math:`\\epsilon = \\rho_d/(\\rho_d+\\rho_g)` (thesis eq. 2.7). Youdin & Johansen (2007) and
-``numbers.md`` call the dust-to-gas ratio ":math:`\\epsilon`": their :math:`\\epsilon` is our ``mu``.
+:math:`\\epsilon = \\rho_d/(\\rho_d+\\rho_g)` (thesis eq. 2.7). Youdin & Johansen (2007) call
+the dust-to-gas ratio ":math:`\\epsilon`": their :math:`\\epsilon` is our ``mu``.
 
 Grains are spheres of radius ``s`` and material (intrinsic) density ``rho_grain``, so a grain
 has mass :math:`m = (4\\pi/3)\\rho_{\\rm grain} s^3`. All quantities are cgs.
@@ -297,7 +297,7 @@ def mixture_stopping_time(K: ArrayLike, rho_g: ArrayLike, rho_d: ArrayLike) -> n
     :math:`t_s = \\rho_g\\rho_d/(K(\\rho_g+\\rho_d))`.
 
     Eqs. 2.5a-b with a constant :math:`K`: :math:`v_d - v_g` decays as :math:`e^{-t/t_s}` (Laibe &
-    Price 2011, the dustybox; ``numbers.md`` §3); the one-fluid equations (Laibe & Price 2014)
+    Price 2011, the dustybox); the one-fluid equations (Laibe & Price 2014)
     use this :math:`t_s`. For the Epstein :math:`K` it equals :func:`epstein_stopping_time` with
     ``rho_d``.
 

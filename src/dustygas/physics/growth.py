@@ -50,7 +50,7 @@ depressed cubic :math:`x^3 + 3x - 3T/2 = 0`, whose real root (Cardano) gives
 .. math:: G = \\left(8 + 9T^2 + 3T\\sqrt{16 + 9T^2}\\right)^{1/3}, \\qquad
           St = \\frac{G}{2} + \\frac{2}{G} - 2 = \\frac{(G-2)^2}{2G}.
 
-``+``: pure growth (``numbers.md`` §3); ``-``: pure fragmentation (Vericel et al. 2021), valid
+``+``: pure growth, ``-``: pure fragmentation (Vericel et al. 2021), valid
 until :math:`T = 0` (:math:`St = 0`) at :math:`t = T_0\\tau`.
 """
 
@@ -197,7 +197,7 @@ def stokes_number_growth(
 ) -> np.ndarray:
     """Exact Stokes number :math:`St(t)` of grains growing (or fragmenting) in a uniform box.
 
-    Vericel et al. (2021); ``numbers.md`` §3. ``tau`` from :func:`growth_timescale`,
+    Vericel et al. (2021). ``tau`` from :func:`growth_timescale`,
     ``stokes0`` the initial (mixture, Epstein) Stokes number. With ``fragmentation=True`` the
     grains shrink at the same rate (eq. 3.6 with :math:`V_{\\rm rel} > V_{\\rm frag}`
     throughout); the result is NaN after the size would reach zero.

@@ -15,10 +15,13 @@ the Youdin & Johansen 2007 linA parameters)::
         def build(self, cfg):
             ...
 
-    preset("soundwave-3d", SoundWave, "Oblique 3D sound wave.", grid={"nx": 32, "ny": 32, "nz": 32})
+    preset("soundwave-3d", SoundWave, "Oblique 3D sound wave.", grid={"nx": 32, "ny": 32, "nz": 32},
+           scheme={"cfl": 0.3})
 
 Every module in this package is imported the first time the registry is queried, so a new
-problem only needs a new file here.
+problem only needs a new file here. ``tests/problems`` runs every registered problem and
+preset for a few cycles with its own defaults (or, for one too large for a laptop, with its
+:attr:`Problem.smoke_overrides`), so defaults that the engine refuses fail the default suite.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from __future__ import annotations
 from typing import Any, ClassVar, Mapping
 
 from ..config import Config, Param, Schema, build_config, with_defaults
-from .._registry import import_submodules, unknown_name
+from .._registry import Discovery, unknown_name
 
 __all__ = ["Problem", "register", "preset", "get_problem", "problem_names", "all_problems"]
 
@@ -37,6 +40,11 @@ class Problem:
     name: ClassVar[str] = ""
     summary: ClassVar[str] = ""
     schema: ClassVar[Schema] = {}
+    #: ``--set`` overrides that shrink a problem too large for a laptop (e.g. a 3D production run)
+    #: for the test that runs every registered problem a few cycles (``tests/problems``): its
+    #: defaults are still validated in full, and it runs with these overrides. Empty (the rule):
+    #: the test runs the defaults themselves.
+    smoke_overrides: ClassVar[tuple[str, ...]] = ()
 
     def validate(self, cfg: Config) -> None:
         """Cross-parameter checks; raise :class:`~dustygas.errors.ConfigError` on failure."""
@@ -53,7 +61,6 @@ class Problem:
 
 
 _REGISTRY: dict[str, Problem] = {}
-_DISCOVERED = False
 
 
 def register(cls: type[Problem]) -> type[Problem]:
@@ -68,23 +75,23 @@ def register(cls: type[Problem]) -> type[Problem]:
     return cls
 
 
-def preset(name: str, base: type[Problem], summary: str, **defaults: Mapping[str, Any]) -> type[Problem]:
-    """Register ``base`` again as ``name`` with different defaults per section."""
+def preset(name: str, base: type[Problem], summary: str, *, smoke_overrides: tuple[str, ...] | None = None,
+           **defaults: Mapping[str, Any]) -> type[Problem]:
+    """Register ``base`` again as ``name`` with different defaults per section (and, for a preset
+    too large for a laptop, its own :attr:`Problem.smoke_overrides`)."""
     schema = {s: dict(params) for s, params in base.schema.items()}
     for section, values in defaults.items():
         if section not in schema:
             raise ValueError(f"preset {name!r}: {base.name!r} has no section {section!r}")
         schema[section] = with_defaults(schema[section], **values)
-    cls = type(base.__name__ + "_" + name.replace("-", "_"), (base,), {"name": name, "summary": summary, "schema": schema})
+    attrs = {"name": name, "summary": summary, "schema": schema}
+    if smoke_overrides is not None:
+        attrs["smoke_overrides"] = tuple(smoke_overrides)
+    cls = type(base.__name__ + "_" + name.replace("-", "_"), (base,), attrs)
     return register(cls)
 
 
-def _discover() -> None:
-    global _DISCOVERED
-    if _DISCOVERED:
-        return
-    _DISCOVERED = True
-    import_submodules(__name__, __path__)
+_discover = Discovery(__name__, __path__)
 
 
 def problem_names() -> list[str]:

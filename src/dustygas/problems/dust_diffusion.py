@@ -2,14 +2,9 @@
 
 Particles are held fixed (only :math:`\\epsilon` evolves) in a uniform gas of density :math:`\\rho` with
 :math:`P = c_s^2\\rho_g = c_s^2(1-\\epsilon)\\rho` and a constant stopping time :math:`t_s`, so the
-terminal-velocity equation (thesis eq. 2.11b) is the non-linear diffusion equation
-:math:`\\partial\\epsilon/\\partial t = \\nabla\\cdot(\\eta\\epsilon\\nabla\\epsilon)`, :math:`\\eta = t_s c_s^2`, with the exact
-spreading solution (Price & Laibe 2015, eq. 51; ``numbers.md`` §3)
-
-.. math:: \\epsilon(r, t) = \\max\\left[A(10\\eta t + B)^{-3/5} - \\frac{r^2}{10\\eta t + B},\\ 0\\right],
-          \\qquad B = r_c^2/\\epsilon_0, \\quad A = \\epsilon_0 B^{3/5},
-
-i.e. :math:`\\epsilon = \\epsilon_0(1 - r^2/r_c^2)` inside :math:`r_c` at :math:`t = 0`. Phantom's test: a
+terminal-velocity equation (thesis eq. 2.11b) is a non-linear diffusion equation with the exact
+spreading solution :func:`dustygas.physics.exact.dust_diffusion` (Price & Laibe 2015, eq. 51),
+:math:`\\epsilon = \\epsilon_0(1 - r^2/r_c^2)` inside :math:`r_c` at :math:`t = 0`. Phantom's test: a
 :math:`32^3` cubic lattice in :math:`[-1/2, 1/2)^3`, :math:`\\rho = 3`, :math:`t_s = 0.1`, :math:`c_s = 1`,
 :math:`\\epsilon_0 = 0.1`, :math:`r_c = 0.25`, fixed step :math:`\\Delta t = 0.05` to :math:`t = 10`, cubic kernel,
 error :math:`L_2 = [\\sum(\\epsilon - \\epsilon_{\\rm exact})^2/N]^{1/2}` over the :math:`N` particles where the exact
@@ -23,30 +18,23 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import Param, with_defaults
+from ..physics.exact import dust_diffusion
 from ..runner import RUN_SCHEMA
 from ..sph import Box, EquationOfState, ParticleSet, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, one_fluid_from_config
 from ..sph.dust.setup import dust_module
 from ..sph.lattice import cubic_lattice
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, register
 
-__all__ = ["DustDiffusion", "diffusion_exact", "l2_error"]
-
-
-def diffusion_exact(r, t: float, eta: float, eps0: float, r_c: float) -> np.ndarray:
-    """Exact :math:`\\epsilon(r, t)` (module docstring)."""
-    B = r_c**2 / eps0
-    A = eps0 * B**0.6
-    term = 10.0 * eta * t + B
-    return np.maximum(A * term**-0.6 - np.asarray(r, dtype=np.float64) ** 2 / term, 0.0)
+__all__ = ["DustDiffusion", "l2_error"]
 
 
 def l2_error(engine: SPHEngine, cfg) -> float:
     """Phantom's :math:`L_2` error of the dust fraction over the particles where the exact one is > 0."""
     p = cfg.problem
     r = np.linalg.norm(engine.particles.pos, axis=1)
-    exact = diffusion_exact(r, engine.t, cfg.dust.ts * p.cs**2, p.eps0, p.r_c)
+    exact = dust_diffusion(r, engine.t, eta=cfg.dust.ts * p.cs**2, eps0=p.eps0, r_c=p.r_c)
     inside = exact > 0
     eps = dust_module(engine).dust_fractions(engine)
     return float(np.sqrt(np.mean((eps[inside] - exact[inside]) ** 2)))
@@ -58,7 +46,7 @@ class DustDiffusion(Problem):
     summary = "Dust fraction diffusing through gas at rest (Price & Laibe 2015); exact solution, Phantom's set-up."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=10.0, dt_snapshot=1.0, log_every=20),
-        "sph": with_defaults(SPH_SCHEMA, alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0, fixed_dt=0.05),
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, fixed_dt=0.05),
         "dust": with_defaults(DUST_SCHEMA, method="one-fluid", drag="constant-ts", ts=0.1),
         "problem": {
             "nx": Param(32, "particles per side of the cubic lattice", min=8),
@@ -85,7 +73,7 @@ class DustDiffusion(Problem):
         kernel = get_kernel(opts.kernel, 3)
         hfact = opts.hfact or kernel.default_hfact
         particles = ParticleSet.create(pos, mass=mass, h=hfact * (mass / p.rho) ** (1.0 / 3.0), alpha=opts.alpha)
-        eps = diffusion_exact(np.linalg.norm(pos, axis=1), 0.0, cfg.dust.ts * p.cs**2, p.eps0, p.r_c)
+        eps = dust_diffusion(np.linalg.norm(pos, axis=1), 0.0, eta=cfg.dust.ts * p.cs**2, eps0=p.eps0, r_c=p.r_c)
         module = one_fluid_from_config(cfg.dust, eps, hold_gas=True)
         box = Box.periodic_box(3, (-0.5,) * 3, (0.5,) * 3)
         return SPHEngine(particles, box, EquationOfState.isothermal(p.cs), opts, modules=(module,))

@@ -4,13 +4,13 @@ A vertical column of the dust-gas mixture (1D, the coordinate is the height :mat
 midplane) in hydrostatic equilibrium under the vertical gravity :math:`-\\Omega^2 z` of a disk:
 isothermal gas with :math:`c_s = H\\Omega`, the same dust fraction :math:`\\epsilon_0 = 0.099` everywhere,
 and the Gaussian density that balances the gas pressure :math:`P = c_s^2(1-\\epsilon_0)\\rho` against
-gravity, :math:`\\rho = \\Sigma/(\\sqrt{2\\pi}H_{\\rm mix})\\,e^{-z^2/2H_{\\rm mix}^2}` with
-:math:`H_{\\rm mix} = \\sqrt{1-\\epsilon_0}\\,H` (the dust adds weight, not pressure), realised by equal-mass
+gravity (:func:`dustygas.physics.exact.dusty_column_density`: a Gaussian of scale height
+:math:`H_{\\rm mix} = \\sqrt{1-\\epsilon_0}\\,H`; the dust adds weight, not pressure), realised by equal-mass
 particles at equally spaced quantiles of the mass. Grains are small (Epstein drag with
 :math:`\\tau_s = t_s\\Omega = 0.01` at the midplane for the default grain size, growing as :math:`1/\\rho`
 with height), the dust is
 evolved in the terminal-velocity approximation and settles towards :math:`z = 0` at
-:math:`v_z \\approx -t_s\\Omega^2 z` (``numbers.md`` §3), piling up at the midplane and emptying the
+:math:`v_z \\approx -t_s\\Omega^2 z` (the :math:`\\tau_s \\ll 1` limit of :math:`-z/t_{\\rm settle}`, thesis eq. 4.18), piling up at the midplane and emptying the
 upper layers, where the density is lowest.
 
 That is where the arithmetic exchange (thesis eq. 3.4) fails: a particle that has little dust
@@ -31,6 +31,7 @@ from scipy.special import erfinv
 
 from ..config import Param, with_defaults
 from ..errors import ConfigError
+from ..physics.exact import dusty_column_density
 from ..runner import RUN_SCHEMA
 from ..sph import Box, EquationOfState, ParticleSet, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, one_fluid_from_config
@@ -38,12 +39,8 @@ from ..sph.modules import SPHModule
 from ..sph.schema import SPH_SCHEMA, options_from_config
 from . import Problem, register
 
-__all__ = ["DustSettle", "VerticalGravity", "column_density", "midplane_stokes_number"]
+__all__ = ["DustSettle", "VerticalGravity", "midplane_stokes_number"]
 
-def column_density(z, eps0: float = 0.099) -> np.ndarray:
-    """Equilibrium density :math:`\\rho(z)` of the mixture column for :math:`\\Sigma = H = \\Omega = 1`."""
-    h_mix = np.sqrt(1.0 - eps0)
-    return np.exp(-0.5 * (np.asarray(z, dtype=np.float64) / h_mix) ** 2) / (np.sqrt(2.0 * np.pi) * h_mix)
 
 
 def midplane_stokes_number(grain_size: float, grain_density: float, eps0: float = 0.099) -> float:
@@ -51,7 +48,7 @@ def midplane_stokes_number(grain_size: float, grain_density: float, eps0: float 
     (mixture density, :func:`~dustygas.physics.drag.epstein_stopping_time`)."""
     from ..physics.drag import epstein_stopping_time
 
-    rho_mid = float(column_density(0.0, eps0))
+    rho_mid = float(dusty_column_density(0.0, dust_fraction=eps0))
     return float(epstein_stopping_time(grain_size, grain_density, (1 - eps0) * rho_mid, 1.0, rho_d=eps0 * rho_mid))
 
 
@@ -100,7 +97,7 @@ class DustSettle(Problem):
         mass = 1.0 / n
         kernel = get_kernel(opts.kernel, 1)
         hfact = opts.hfact or kernel.default_hfact
-        particles = ParticleSet.create(z[:, None], mass=mass, h=hfact * mass / column_density(z, p.eps0),
+        particles = ParticleSet.create(z[:, None], mass=mass, h=hfact * mass / dusty_column_density(z, dust_fraction=p.eps0),
                                        alpha=opts.alpha)
         module = one_fluid_from_config(cfg.dust, p.eps0)
         return SPHEngine(particles, Box.open_box(1), EquationOfState.isothermal(1.0), opts,

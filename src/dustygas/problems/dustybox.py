@@ -1,15 +1,10 @@
 """``dustybox``: uniform gas and dust whose relative velocity decays by drag (Laibe & Price 2011).
 
 With uniform densities nothing but drag acts; the centre-of-mass velocity stays constant and
-the relative velocity decays on the mixture stopping time
-:math:`t_s = \\rho_g\\rho_d/(K(\\rho_g+\\rho_d))` (``numbers.md`` §3):
+the relative velocity decays on the mixture stopping time (:meth:`DustyBox.stopping_time`): the
+exact solution is :func:`dustygas.physics.exact.dusty_box`.
 
-.. math::
-
-    \\Delta v(t) = \\Delta v_0 e^{-t/t_s}, \\qquad v_g = \\bar v - \\frac{\\rho_d}{\\rho}\\Delta v, \\qquad
-    v_d = \\bar v + \\frac{\\rho_g}{\\rho}\\Delta v.
-
-Defaults are Phantom's unit test (``numbers.md`` §3): :math:`\\rho_g = \\rho_d = 1`, :math:`v_d = 1`,
+Defaults are Phantom's unit test: :math:`\\rho_g = \\rho_d = 1`, :math:`v_d = 1`,
 :math:`v_g = 0`, :math:`K = 0.35`, :math:`c_s = 1`, :math:`\\Delta t = 10^{-3}`, 100 steps, quintic kernel, in
 a 3D periodic box of hexagonal-close-packed gas particles with dust particles at the same
 positions (two-fluid); ``dust.method = one-fluid`` uses mixture particles with the full one-fluid
@@ -27,18 +22,10 @@ from ..runner import RUN_SCHEMA
 from ..sph import Box, EquationOfState, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, drag_law_from_config, one_fluid_from_config, two_fluid_from_config
 from ..sph.dust.setup import dusty_particles, lattice
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
-__all__ = ["DustyBox", "dustybox_exact"]
-
-
-def dustybox_exact(t, v_gas0: float, v_dust0: float, rho_gas: float, rho_dust: float, ts: float):
-    """:math:`(v_g, v_d)` at time ``t`` (module docstring)."""
-    rho = rho_gas + rho_dust
-    vbar = (rho_gas * v_gas0 + rho_dust * v_dust0) / rho
-    dv = (v_dust0 - v_gas0) * np.exp(-np.asarray(t, dtype=np.float64) / ts)
-    return vbar - rho_dust / rho * dv, vbar + rho_gas / rho * dv
+__all__ = ["DustyBox"]
 
 
 @register
@@ -47,7 +34,7 @@ class DustyBox(Problem):
     summary = "Uniform gas and dust, relative velocity decaying by drag (Laibe & Price 2011); exact solution."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=0.1, log_every=1000),
-        "sph": with_defaults(SPH_SCHEMA, kernel="quintic", alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0,
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, kernel="quintic",
                              h_tolerance=1e-6, fixed_dt=1e-3),
         "dust": with_defaults(DUST_SCHEMA, K=0.35, model="full", reconstruction="none"),
         "problem": {
@@ -73,7 +60,7 @@ class DustyBox(Problem):
             raise ConfigError(f"problem.layers = {cfg.problem.layers}: a close-packed lattice needs an even number")
 
     def stopping_time(self, cfg) -> float:
-        """Mixture stopping time of the configured densities (for :func:`dustybox_exact`)."""
+        """Mixture stopping time of the configured densities (for :func:`~dustygas.physics.exact.dusty_box`)."""
         p = cfg.problem
         law = drag_law_from_config(cfg.dust, self._gamma(cfg))
         rho = p.rho_gas + p.rho_dust

@@ -7,7 +7,7 @@ Left :math:`(\\rho_g, P) = (1, 1)`, right :math:`(0.125, 0.1)`, gas and dust at 
 :math:`(1-\\epsilon)u`, so :math:`P = (\\gamma-1)\\rho_{\\rm mix}(1-\\epsilon)u` with the same :math:`\\gamma`): the Riemann
 problem :math:`(2, 0, 1) | (0.25, 0, 0.1)`, with :math:`P_* = 0.29395`, :math:`u_* = 0.59481`,
 :math:`\\rho_{*L} = 0.95938`, :math:`\\rho_{*R} = 0.45961` (mixture) and shock speed 1.30424
-(``numbers.md`` §3; :meth:`DustyShock.asymptotic_solution`). :func:`star_state` averages the
+(Toro 2009's exact solver, :mod:`dustygas.physics.exact_riemann`; :meth:`DustyShock.asymptotic_solution`). :func:`star_state` averages the
 simulated pressure, velocities and densities over the plateaus of that solution.
 
 The tube is periodic, :math:`-1 \\le x < 1`, as in ``sph-sod``; the mirrored interface at
@@ -31,6 +31,7 @@ from ..sph.dust.schema import DUST_SCHEMA, one_fluid_from_config, two_fluid_from
 from ..sph.dust.setup import dusty_particles, species
 from ..sph.schema import SPH_SCHEMA, options_from_config
 from . import Problem, register
+from .sph_sod import SOD_STATES
 
 __all__ = ["DustyShock", "star_state"]
 
@@ -83,12 +84,8 @@ class DustyShock(Problem):
         "dust": with_defaults(DUST_SCHEMA, K=1000.0, reconstruction="mc", integration="implicit"),
         "problem": {
             "nx": Param(256, "gas particles in -0.5 < x < 0 (left state)", min=8),
-            "rho_left": Param(1.0, "left gas density", min=0.0, min_open=True),
-            "p_left": Param(1.0, "left pressure", min=0.0, min_open=True),
-            "rho_right": Param(0.125, "right gas density", min=0.0, min_open=True),
-            "p_right": Param(0.1, "right pressure", min=0.0, min_open=True),
+            **SOD_STATES,
             "dust_to_gas": Param(1.0, "dust-to-gas density ratio mu on both sides", min=0.0, min_open=True),
-            "gamma": Param(5.0 / 3.0, "adiabatic index", min=1.0, min_open=True),
         },
     }
 

@@ -1,64 +1,34 @@
 """``dustywave``: a linear sound wave in a dust-gas mixture with constant drag (Laibe & Price 2011).
 
-Perturbations :math:`\\propto e^{ik(x - x_0)}` of the isothermal two-fluid equations (thesis eq. 2.5
-with constant :math:`K`) obey the linear system
-
-.. math::
-
-    \\frac{d}{dt}\\begin{pmatrix}\\delta\\rho_g\\\\ \\delta\\rho_d\\\\ \\delta v_g\\\\ \\delta v_d\\end{pmatrix} =
-    \\begin{pmatrix} 0 & 0 & -ik\\rho_{g0} & 0\\\\ 0 & 0 & 0 & -ik\\rho_{d0}\\\\
-    -ikc_s^2/\\rho_{g0} & 0 & -K/\\rho_{g0} & K/\\rho_{g0}\\\\ 0 & 0 & K/\\rho_{d0} & -K/\\rho_{d0}\\end{pmatrix}
-    \\begin{pmatrix}\\delta\\rho_g\\\\ \\delta\\rho_d\\\\ \\delta v_g\\\\ \\delta v_d\\end{pmatrix},
-
-whose exact initial-value solution is the matrix exponential (:func:`dustywave_exact`, with
-:func:`scipy.linalg.expm`); its eigenvalues are the roots of the dispersion relation of
-``numbers.md`` §3. The initial state is Phantom's: both densities :math:`\\rho_0[1 + A\\sin k(x-x_0)]`,
-both velocities :math:`Ac_s\\sin k(x-x_0)`. Defaults: :math:`\\rho_g = \\rho_d = 1`, :math:`c_s = 1`,
-:math:`\\lambda = 1`, :math:`A = 10^{-4}`, :math:`K = 1000`, two-fluid with dust particles on the gas
-particles. ``dustywave-3d`` is Phantom's 3D set-up: 64 particles per wavelength on a
-hexagonal-close-packed lattice 12 rows and layers across (9216 gas + 9216 dust particles),
-quintic kernel, :math:`t = 0.1`. :func:`velocity_errors` gives the RMS velocity error of each species
-in units of :math:`Ac_s`.
+The exact initial-value solution of the linearised isothermal two-fluid equations (thesis eq. 2.5
+with constant :math:`K`) is :func:`dustygas.physics.exact.dusty_wave`. The initial state is
+Phantom's: both densities :math:`\\rho_0[1 + A\\sin k(x-x_0)]`, both velocities
+:math:`Ac_s\\sin k(x-x_0)`. Defaults: :math:`\\rho_g = \\rho_d = 1`, :math:`c_s = 1`, :math:`\\lambda = 1`,
+:math:`A = 10^{-4}`, :math:`K = 1000`, two-fluid with dust particles on the gas particles.
+``dustywave-3d`` is Phantom's 3D set-up: 64 particles per wavelength on a hexagonal-close-packed
+lattice 12 rows and layers across (9216 gas + 9216 dust particles), quintic kernel,
+:math:`t = 0.1`. :func:`velocity_errors` gives the RMS velocity error of each species in units
+of :math:`Ac_s`.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import expm
 
 from ..config import Param, with_defaults
 from ..errors import ConfigError
+from ..physics.exact import dusty_wave
 from ..runner import RUN_SCHEMA
 from ..sph import Box, EquationOfState, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, drag_law_from_config, one_fluid_from_config, two_fluid_from_config
 from ..sph.dust.setup import dusty_particles, lattice, species
 from ..sph.lattice import sine_density_positions
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
-__all__ = ["DustyWave", "dustywave_exact", "dustywave_matrix", "velocity_errors"]
+__all__ = ["DustyWave", "velocity_errors"]
 
 X0 = -0.5  # left edge of the box and phase origin (Phantom's set-up)
-
-
-def dustywave_matrix(k: float, K: float, cs: float, rho_gas: float, rho_dust: float) -> np.ndarray:
-    """The 4x4 matrix of the linear system (module docstring)."""
-    ik = 1j * k
-    return np.array([[0, 0, -ik * rho_gas, 0],
-                     [0, 0, 0, -ik * rho_dust],
-                     [-ik * cs**2 / rho_gas, 0, -K / rho_gas, K / rho_gas],
-                     [0, 0, K / rho_dust, -K / rho_dust]], dtype=complex)
-
-
-def dustywave_exact(x, t: float, amplitude: float, K: float, cs: float = 1.0, rho_gas: float = 1.0,
-                    rho_dust: float = 1.0, wavelength: float = 1.0, x0: float = X0):
-    """:math:`(\\rho_g, \\rho_d, v_g, v_d)` at positions ``x`` and time ``t`` from the initial state of the module docstring."""
-    k = 2.0 * np.pi / wavelength
-    c0 = amplitude * np.array([rho_gas, rho_dust, cs, cs], dtype=complex)
-    c = expm(dustywave_matrix(k, K, cs, rho_gas, rho_dust) * t) @ c0
-    phase = np.exp(1j * k * (np.asarray(x, dtype=np.float64) - x0))
-    dens_g, dens_d, vg, vd = (np.imag(ci * phase) for ci in c)
-    return rho_gas + dens_g, rho_dust + dens_d, vg, vd
 
 
 def _background_K(cfg) -> float:
@@ -71,11 +41,13 @@ def _background_K(cfg) -> float:
 
 
 def velocity_errors(engine: SPHEngine, cfg) -> dict[str, float]:
-    """RMS error of :math:`v_x` of the gas and of the dust against :func:`dustywave_exact`, in units of :math:`Ac_s`."""
+    """RMS error of :math:`v_x` of the gas and of the dust against :func:`~dustygas.physics.exact.dusty_wave`, in
+    units of :math:`Ac_s`."""
     p = cfg.problem
     out = {}
     for i, (name, (pos, vel)) in enumerate(species(engine).items()):
-        exact = dustywave_exact(pos[:, 0], engine.t, p.amplitude, _background_K(cfg), p.cs, p.rho_gas, p.rho_dust)
+        exact = dusty_wave(pos[:, 0], engine.t, amplitude=p.amplitude, K=_background_K(cfg), cs=p.cs,
+                           rho_gas=p.rho_gas, rho_dust=p.rho_dust, x0=X0)
         out[name] = float(np.sqrt(np.mean((vel[:, 0] - exact[2 + i]) ** 2)) / (p.amplitude * p.cs))
     return out
 
@@ -86,7 +58,7 @@ class DustyWave(Problem):
     summary = "Linear sound wave in a dusty gas (Laibe & Price 2011); exact 4x4 matrix-exponential solution."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=0.5, log_every=1000),
-        "sph": with_defaults(SPH_SCHEMA, kernel="quintic", alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0,
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, kernel="quintic",
                              h_tolerance=1e-6),
         "dust": with_defaults(DUST_SCHEMA, K=1000.0),
         "problem": {

@@ -6,7 +6,7 @@ thesis eq. 3.6 with the turbulent relative velocity of eq. 3.7
 (:mod:`~dustygas.sph.dust.grain_size`). In a uniform box the Stokes number
 :math:`St = \\sqrt{\\pi\\gamma/8}\\,\\rho_{\\rm grain}s\\Omega/(\\rho c_s)` then has the exact solution of
 Vericel et al. (2021), :func:`dustygas.physics.growth.stokes_number_growth` with the growth time
-:func:`dustygas.physics.growth.growth_timescale` (``numbers.md`` §3) -- for pure growth
+:func:`dustygas.physics.growth.growth_timescale` -- for pure growth
 (:math:`V_{\\rm frag} = \\infty`, the default) and for pure fragmentation (:math:`V_{\\rm frag} = 0`,
 ``growth-box-fragmentation``), valid until the grains would reach zero size. Past that time the
 sizes stop at ``growth.min_size`` instead of becoming negative.
@@ -29,7 +29,7 @@ from ..sph import Box, EquationOfState, ParticleSet, SPHEngine, get_kernel
 from ..sph.dust.schema import DUST_SCHEMA, GROWTH_SCHEMA, one_fluid_from_config
 from ..sph.dust.setup import dust_module
 from ..sph.lattice import cubic_lattice
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
 __all__ = ["GrowthBox", "stokes_numbers"]
@@ -50,7 +50,7 @@ class GrowthBox(Problem):
     summary = "Grain growth (or fragmentation) in a uniform dusty box; Vericel et al. (2021) exact Stokes number."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=50.0, dt_history=0.5, log_every=10000),
-        "sph": with_defaults(SPH_SCHEMA, alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0),
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID),
         "dust": with_defaults(DUST_SCHEMA, method="one-fluid", drag="epstein", grain_density=1.0),
         "growth": with_defaults(GROWTH_SCHEMA, enabled=True),
         "problem": {

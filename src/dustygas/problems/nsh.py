@@ -76,8 +76,6 @@ class NSH(Problem):
         p = cfg.problem
         if len(p.taus) != len(p.mu):
             raise ConfigError(f"problem.taus has {len(p.taus)} species but problem.mu has {len(p.mu)}")
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
         if cfg.grid.nx == 1:
             raise ConfigError("grid.nx = 1: the NSH drift is radial, x must be active")
 

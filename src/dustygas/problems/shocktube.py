@@ -13,16 +13,10 @@ import numpy as np
 from ..config import Param, with_defaults
 from ..errors import ConfigError
 from ..grid.params import BOUNDARY, GAS, GRID, SCHEME, engine_from_config
-from ..physics.riemann import IsothermalRiemannSolution, isothermal_riemann
 from ..runner import RUN_SCHEMA
 from . import Problem, register
 
-__all__ = ["ShockTube", "shocktube_solution"]
-
-
-def shocktube_solution(x: np.ndarray, t: float, p, cs: float = 1.0) -> IsothermalRiemannSolution:
-    """Exact solution at positions ``x`` and time ``t > 0`` for the ``[problem]`` section ``p``."""
-    return isothermal_riemann((np.asarray(x) - p.x0) / t, p.rho_l, p.vx_l, p.rho_r, p.vx_r, cs, p.vy_l, p.vy_r)
+__all__ = ["ShockTube"]
 
 
 @register

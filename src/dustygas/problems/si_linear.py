@@ -11,10 +11,10 @@ Units: ``Ω = c_s = H = 1`` for the gas and ``ρ_g0 = 1``; with ``Π = η v_K / 
 unit of the linear theory is ``η v_K = Π`` and its length unit ``η r = Π`` (so ``k = K/Π``).
 The global pressure gradient is the force ``2 η v_K Ω x̂`` on the gas, or with
 ``problem.pressure_frame = "particles"`` the opposite force on the particles (velocities then
-shifted by ``+η v_K ŷ``; numbers.md §1). Orbital advection stores velocities relative to the
+shifted by ``+η v_K ŷ``, as in Bai & Stone 2010a). Orbital advection stores velocities relative to the
 shear (in the x-z plane it only removes the velocity jump of the radial images).
 
-Particles (numbers.md §1, "simulation set-up facts") start on a lattice of ``lattice^2``
+Particles (as in Athena's set-up, Bai & Stone 2010a) start on a lattice of ``lattice^2``
 particles per cell and are *displaced* along ``k̂`` to realise the density wave: the map from
 lattice coordinate ``s_0`` to position ``s`` (both along ``k̂``) solves mass conservation
 ``ρ(s) ds = ρ_0 ds_0`` exactly, ``s + (a/k) sin(k s + φ) = s_0`` (Newton), so there is no
@@ -24,17 +24,17 @@ average of the wave (``Π sinc(k_d Δx_d/2)``), so that the gas sees the cell-av
 the eigenmode (the kernel's transfer function compensated). Velocities are the eigenvector's
 at each particle's displaced position; gas cells get the cell averages of the eigenmode.
 
-Presets ``si-linA`` and ``si-linB``: Youdin & Johansen (2007) Table 1, Athena's set-up
-(numbers.md §1-2): τ_s = 0.1, ε = 3 resp. 0.2, K_x = K_z = 30 resp. 6, Π = 0.05, 64², one
+Presets ``si-linA`` and ``si-linB``: Youdin & Johansen (2007) Table 1 in Athena's set-up
+(Bai & Stone 2010a): τ_s = 0.1, ε = 3 resp. 0.2, K_x = K_z = 30 resp. 6, Π = 0.05, 64², one
 particle per cell, amplitude 1e-6, run to t = 6 resp. 150. Growth: 0.4190091 resp. 0.0154862
-(consistent linearisation); the mode amplitudes of all eight fields go to ``history.h5`` for
+(consistent linearisation; Benítez-Llambay, Krapp & Pessah 2019, Table 4); the mode amplitudes of all eight fields go to ``history.h5`` for
 ``dustygas analyze growth``.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -43,19 +43,32 @@ from ..errors import ConfigError, SetupError
 from ..grid import GridEngine, Mesh
 from ..grid.params import SCHEME
 from ..particles import ParticleStore
+from ..particles.coupling import GAS_INTEGRATORS
 from ..particles.interp import Cells, KERNELS
 from ..particles.params import PARTICLES, lattice_positions, particle_engine_from_config
 from ..particles.push import deposit_density
 from ..runner import RUN_SCHEMA
 from . import Problem, preset, register
 
-__all__ = ["SILinear", "StreamingBox", "streaming_box"]
+__all__ = ["SILinear", "StreamingBox", "streaming_box", "SI_GRID", "SI_SCHEME"]
 
-#: the scheme defaults of the particle problems: PPM with the Colella & Sekora (2008) limiter,
+#: the scheme section of the particle problems: VL2 only, PPM with the Colella & Sekora (2008) limiter,
 #: which leaves smooth extrema alone (the classic CW84 limiter clips them at any amplitude:
 #: linB at 64² then grows 6.2 % too slowly instead of 2.1 %), and HLLC
 #: (:mod:`dustygas.particles.coupling` lists what mattered)
-SI_SCHEME = with_defaults(SCHEME, reconstruction="ppm-cs", riemann="hllc")
+SI_SCHEME = {**with_defaults(SCHEME, reconstruction="ppm-cs", riemann="hllc"),
+             "integrator": replace(SCHEME["integrator"], choices=GAS_INTEGRATORS,
+                                   doc="time integrator (the particles' drag needs VL2's two stages: Stone & "
+                                       "Gardiner 2009, Bai & Stone 2010a)")}
+
+
+#: the sections and parameters the one-eigenmode problems share (``si-linear``, ``si-settling``)
+SI_GRID = {
+    "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
+    "nz": Param(64, "cells along z (vertical); one wavelength, L_z = 2 pi Pi / |K_z|", min=4),
+}
+SI_TAUS = Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True)
+SI_AMPLITUDE = Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1)
 
 
 @dataclass
@@ -195,28 +208,23 @@ class SILinear(Problem):
     summary = "One linear streaming-instability eigenmode in a 2D x-z box of gas + particles (YJ07, BS10)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=6.0, dt_history=0.01),
-        "grid": {
-            "nx": Param(64, "cells along x (radial); the box holds one wavelength, L_x = 2 pi Pi / K_x", min=4),
-            "nz": Param(64, "cells along z (vertical); L_z = 2 pi Pi / |K_z|", min=4),
-        },
+        "grid": SI_GRID,
         "scheme": SI_SCHEME,
         "particles": PARTICLES,
         "problem": {
-            "taus": Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True),
+            "taus": SI_TAUS,
             "mu": Param(3.0, "dust-to-gas density ratio (YJ07's epsilon)", min=0.0, min_open=True),
             "kx": Param(30.0, "radial wavenumber K_x = k_x eta r", "1/(eta r)", min=0.0, min_open=True),
             "kz": Param(30.0, "vertical wavenumber K_z = k_z eta r (sign picks the mode)", "1/(eta r)"),
             "Pi": Param(0.05, "eta v_K / c_s (velocity unit eta v_K = Pi, length unit eta r = Pi H)", min=0.0,
                         min_open=True),
-            "amplitude": Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1),
+            "amplitude": SI_AMPLITUDE,
             "pressure_frame": Param("gas", "global pressure gradient as a force on the gas, or the opposite force "
                                     "on the particles", choices=("gas", "particles")),
         },
     }
 
     def validate(self, cfg) -> None:
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
         if cfg.problem.kz == 0:
             raise ConfigError("problem.kz = 0: the 2D box needs a vertical wavenumber")
 

@@ -26,7 +26,7 @@ from ..errors import ConfigError
 from ..particles.params import PARTICLES
 from ..runner import RUN_SCHEMA
 from . import Problem, register
-from .si_linear import SI_SCHEME, _scheme, streaming_box
+from .si_linear import SI_AMPLITUDE, SI_GRID, SI_SCHEME, SI_TAUS, _scheme, streaming_box
 
 __all__ = ["SISettling", "settling_drift"]
 
@@ -48,14 +48,11 @@ class SISettling(Problem):
     summary = "Settling-enhanced streaming instability: one eigenmode with a steady vertical dust drift (Fig 4.6)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=40.0, dt_history=0.05),
-        "grid": {
-            "nx": Param(32, "cells along x (one wavelength)", min=4),
-            "nz": Param(32, "cells along z (one wavelength)", min=4),
-        },
+        "grid": with_defaults(SI_GRID, nx=32, nz=32),
         "scheme": SI_SCHEME,
         "particles": PARTICLES,
         "problem": {
-            "taus": Param(0.1, "stopping time tau_s = Omega t_s (fixed)", "1/Omega", min=0.0, min_open=True),
+            "taus": SI_TAUS,
             "mu": Param(0.1, "dust-to-gas density ratio", min=0.0, min_open=True),
             "k": Param(0.6, "wavenumber |K| = |k| eta r", "1/(eta r)", min=0.0, min_open=True),
             "theta": Param(30.0, "angle of k from the vertical, tan(theta) = K_x/|K_z|", "deg", min=0.0, max=90.0,
@@ -64,13 +61,11 @@ class SISettling(Problem):
             "Pi": Param(0.05, "eta v_K / c_s", min=0.0, min_open=True),
             "vz": Param("settling", "vertical dust drift relative to the gas in eta v_K, or 'settling' for thesis "
                         "eq. 4.19 (downward)", type="str"),
-            "amplitude": Param(1e-6, "amplitude of delta rho_p / rho_p0", min=0.0, min_open=True, max=0.1),
+            "amplitude": SI_AMPLITUDE,
         },
     }
 
     def validate(self, cfg) -> None:
-        if cfg.scheme.integrator != "vl2":
-            raise ConfigError(f"scheme.integrator = '{cfg.scheme.integrator}': particles need vl2")
         vz = cfg.problem.vz
         if vz != "settling":
             try:

@@ -38,6 +38,16 @@ def l1_errors(engine: SPHEngine, solution: RiemannSolution, half_width: float = 
             "P": float(np.mean(np.abs(engine.P[sel] - pr)))}
 
 
+#: the two states of Sod's (1978) shock tube, gas at rest, and the adiabatic index (shared with ``dustyshock``)
+SOD_STATES = {
+    "rho_left": Param(1.0, "left (gas) density", min=0.0, min_open=True),
+    "p_left": Param(1.0, "left pressure", min=0.0, min_open=True),
+    "rho_right": Param(0.125, "right (gas) density", min=0.0, min_open=True),
+    "p_right": Param(0.1, "right pressure", min=0.0, min_open=True),
+    "gamma": Param(5.0 / 3.0, "adiabatic index", min=1.0, min_open=True),
+}
+
+
 @register
 class SPHSod(Problem):
     name = "sph-sod"
@@ -49,11 +59,7 @@ class SPHSod(Problem):
             "ndim": Param(1, "number of dimensions", choices=(1, 3)),
             "nx": Param(256, "particles in -0.5 < x < 0 (left state)", min=8),
             "layers": Param(6, "rows and layers across the 3D tube on the right (low-density) side", min=2),
-            "rho_left": Param(1.0, "left density", min=0.0, min_open=True),
-            "p_left": Param(1.0, "left pressure", min=0.0, min_open=True),
-            "rho_right": Param(0.125, "right density", min=0.0, min_open=True),
-            "p_right": Param(0.1, "right pressure", min=0.0, min_open=True),
-            "gamma": Param(5.0 / 3.0, "adiabatic index", min=1.0, min_open=True),
+            **SOD_STATES,
         },
     }
 

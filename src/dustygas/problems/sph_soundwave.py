@@ -25,7 +25,7 @@ from ..errors import ConfigError
 from ..runner import RUN_SCHEMA
 from ..sph import Box, EquationOfState, ParticleSet, SPHEngine, get_kernel
 from ..sph.lattice import close_packed_lattice, cubic_lattice, sine_density_positions
-from ..sph.schema import SPH_SCHEMA, options_from_config
+from ..sph.schema import INVISCID, SPH_SCHEMA, options_from_config
 from . import Problem, preset, register
 
 __all__ = ["SPHSoundWave", "soundwave_exact", "velocity_error"]
@@ -50,7 +50,7 @@ class SPHSoundWave(Problem):
     summary = "Linear sound wave in a periodic SPH box (1/2/3D) with its exact solution."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=1.0, log_every=1000),
-        "sph": with_defaults(SPH_SCHEMA, alpha=0.0, alpha_min=0.0, switch="none", alpha_u=0.0, h_tolerance=1e-6),
+        "sph": with_defaults(SPH_SCHEMA, **INVISCID, h_tolerance=1e-6),
         "problem": {
             "ndim": Param(1, "number of dimensions", choices=(1, 2, 3)),
             "nx": Param(64, "particles per wavelength along x", min=8),

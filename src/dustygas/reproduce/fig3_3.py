@@ -42,9 +42,9 @@ def fig3_3(output: Path, quick: bool = True) -> list[Path]:
         ax2.set_xlabel("time [orbits]")
         ax2.set_ylabel(r"$\min\,\epsilon$")
         ax2.set_title("smallest dust fraction", fontsize=10)
-        cols = [Column("time", t, "1/Omega", "time of the sample")]
+        n = min(len(s[label]["time"]) for label in styles)  # the runs' history rows (one per 0.05/Omega)
+        cols = [Column("time", t[:n], "1/Omega", "time of the sample (upwind run; the others within one step)")]
         for label in styles:
-            n = len(t)
             cols += [Column(f"mass_{label}", s[label]["mass"][:n], "M_d(0)", f"total dust mass ({label})"),
                      Column(f"clamp_events_{label}", s[label]["clamps"][:n], "", f"particles clamped so far ({label})"),
                      Column(f"min_eps_{label}", s[label]["eps_min"][:n], "", f"smallest dust fraction ({label})")]

@@ -4,9 +4,9 @@ Modules
 -------
 kernels
     M4, M6, Wendland C2/C4 kernels in 1/2/3D and the Laibe & Price (2012) double-hump drag kernels.
-neighbours, kdtree
+neighbours, kdtree, pairs
     Periodic/open domains (:class:`Box`); cell-list and k-d tree neighbour searches behind one
-    :class:`NeighbourFinder`.
+    :class:`NeighbourFinder`, and the pair geometry (minimum image, neighbour rows) both share.
 density
     Density summation (eq. 3.1) with self-consistent smoothing lengths and grad-h terms.
 eos, viscosity, forces, external
@@ -21,8 +21,8 @@ particles, engine, modules, schema
     problems.
 dust
     One-fluid and two-fluid dust, grain sizes (thesis §3.2-3.3).
-lattice, render, plot
-    Initial particle arrangements, SPH interpolation onto grids, figures.
+lattice, render
+    Initial particle arrangements and SPH interpolation onto grids.
 """
 
 from .engine import SPHEngine, SPHOptions

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .neighbours import _store_neighbours, minimum_image
+from .pairs import candidate_buffers, minimum_image, scan_candidates
 
 __all__ = ["build_tree", "tree_search"]
 
@@ -162,12 +162,7 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
         if nl > nodes.shape[0]:
             nodes = np.empty(nl, np.int64)
             _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
-        px = np.empty(m)
-        py = np.empty(m)
-        pz = np.empty(m)
-        ph2 = np.empty(m)
-        pid = np.empty(m, np.int64)
-        d2 = np.empty(m)
+        px, py, pz, ph2, pid, d2 = candidate_buffers(m)
         j = 0
         for t in range(nl):
             node = nodes[t]
@@ -180,15 +175,5 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
                 pid[j] = b
                 j += 1
         for k in range(qstart[leaf], qend[leaf]):
-            a = qorder[k]
-            xa, ya, za = qpos[a, 0], qpos[a, 1], qpos[a, 2]
-            ha2 = qh[a] * qh[a]
-            for j in range(m):
-                dx = xa - px[j]
-                dy = ya - py[j]
-                dz = za - pz[j]
-                dx -= length[0] * np.rint(dx * inv_l[0])  # minimum image (no-op when not periodic)
-                dy -= length[1] * np.rint(dy * inv_l[1])
-                dz -= length[2] * np.rint(dz * inv_l[2])
-                d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
+            scan_candidates(qorder[k], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
+                            index, count, overlap)

@@ -38,6 +38,8 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import SimulationError
+from .kdtree import build_tree, tree_search
+from .pairs import candidate_buffers, minimum_image, scan_candidates
 
 __all__ = ["Box", "NeighbourList", "NeighbourFinder", "minimum_image"]
 
@@ -80,17 +82,6 @@ class Box:
         """Put positions back into ``[lo, hi)`` along periodic dimensions (in place)."""
         lo, length, per = self.arrays()
         _wrap(pos, lo, length, per)
-
-
-@njit(cache=True)
-def minimum_image(dx: float, length: float, periodic: bool) -> float:
-    """Separation ``dx`` mapped to the nearest periodic image (unchanged when not periodic)."""
-    if periodic:
-        if dx > 0.5 * length:
-            return dx - length
-        if dx < -0.5 * length:
-            return dx + length
-    return dx
 
 
 @njit(parallel=True, cache=True)
@@ -175,6 +166,17 @@ def _range(c, n, periodic):
     return lo, hi
 
 
+@njit(inline="always")
+def _image_cell(k, n, length):
+    """Neighbour cell ``k`` (one beyond either end at most) wrapped into ``[0, n)``, and the shift
+    that carries its particles to the image next to the query cell."""
+    if k < 0:
+        return k + n, -length
+    if k >= n:
+        return k - n, length
+    return k, 0.0
+
+
 @njit(parallel=True, cache=True)
 def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, periodic, radius,
             exclude_self, index, count, overlap):
@@ -182,12 +184,10 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
     applied), then test every query of the cell against them in two vectorisable passes."""
     nx, ny, nz = ncell[0], ncell[1], ncell[2]
     # minimum image needed along periodic dimensions held in a single cell
-    mi_x = periodic[0] and nx == 1
-    mi_y = periodic[1] and ny == 1
-    mi_z = periodic[2] and nz == 1
-    inv_lx = 1.0 / length[0] if mi_x else 0.0
-    inv_ly = 1.0 / length[1] if mi_y else 0.0
-    inv_lz = 1.0 / length[2] if mi_z else 0.0
+    inv_l = np.zeros(3)
+    for d, n in enumerate((nx, ny, nz)):
+        if periodic[d] and n == 1:
+            inv_l[d] = 1.0 / length[d]
     r2 = radius * radius
     for c in prange(nx * ny * nz):
         if qstart[c] == qstart[c + 1]:
@@ -207,40 +207,14 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
                     kx = (cx + ox) % nx
                     k = (kz * ny + ky) * nx + kx
                     m += sstart[k + 1] - sstart[k]
-        px = np.empty(m)
-        py = np.empty(m)
-        pz = np.empty(m)
-        ph2 = np.empty(m)
-        pid = np.empty(m, np.int64)
-        d2 = np.empty(m)
+        px, py, pz, ph2, pid, d2 = candidate_buffers(m)
         j = 0
         for oz in range(zlo, zhi + 1):
-            kz = cz + oz
-            sz = 0.0
-            if kz < 0:
-                kz += nz
-                sz = -length[2]
-            elif kz >= nz:
-                kz -= nz
-                sz = length[2]
+            kz, sz = _image_cell(cz + oz, nz, length[2])
             for oy in range(ylo, yhi + 1):
-                ky = cy + oy
-                sy = 0.0
-                if ky < 0:
-                    ky += ny
-                    sy = -length[1]
-                elif ky >= ny:
-                    ky -= ny
-                    sy = length[1]
+                ky, sy = _image_cell(cy + oy, ny, length[1])
                 for ox in range(xlo, xhi + 1):
-                    kx = cx + ox
-                    sx = 0.0
-                    if kx < 0:
-                        kx += nx
-                        sx = -length[0]
-                    elif kx >= nx:
-                        kx -= nx
-                        sx = length[0]
+                    kx, sx = _image_cell(cx + ox, nx, length[0])
                     k = (kz * ny + ky) * nx + kx
                     for i in range(sstart[k], sstart[k + 1]):
                         px[j] = spos[i, 0] + sx
@@ -250,45 +224,8 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
                         pid[j] = sorder[i]
                         j += 1
         for iq in range(qstart[c], qstart[c + 1]):
-            a = qorder[iq]
-            xa, ya, za = qpos[a, 0], qpos[a, 1], qpos[a, 2]
-            ha2 = qh[a] * qh[a]
-            for j in range(m):
-                dx = xa - px[j]
-                dy = ya - py[j]
-                dz = za - pz[j]
-                if mi_x:
-                    dx -= length[0] * np.rint(dx * inv_lx)
-                if mi_y:
-                    dy -= length[1] * np.rint(dy * inv_ly)
-                if mi_z:
-                    dz -= length[2] * np.rint(dz * inv_lz)
-                d2[j] = (dx * dx + dy * dy + dz * dz) - r2 * max(ha2, ph2[j])
-            _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap)
-
-
-@njit(inline="always")
-def _store_neighbours(a, m, d2, pid, ph2, ha2, r2, exclude_self, index, count, overlap):
-    """Write the candidates with d2 < 0 (inside max(h_a, h_b) * radius) into row a of the list.
-
-    ``count[a]`` is the true number of neighbours even when it exceeds the row capacity (the caller
-    then grows the list and searches again); ``overlap[a]`` records a neighbour at zero separation.
-    """
-    cap = index.shape[1]
-    n = 0
-    hit = -1
-    for j in range(m):
-        if d2[j] < 0.0:
-            b = pid[j]
-            if exclude_self and b == a:
-                continue
-            if d2[j] == -r2 * max(ha2, ph2[j]):
-                hit = b  # zero separation
-            if n < cap:
-                index[a, n] = b
-            n += 1
-    count[a] = n
-    overlap[a] = hit
+            scan_candidates(qorder[iq], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
+                            index, count, overlap)
 
 
 @njit(parallel=True, cache=True)
@@ -375,8 +312,6 @@ class NeighbourFinder:
         """A permutation listing particles cell by cell (or leaf by leaf): storing them in this
         order keeps neighbours close in memory."""
         if self.choose(h) == "tree":
-            from .kdtree import build_tree
-
             return build_tree(pos, h, self.box.ndim, self.leaf_size)[0]
         origin, inv_size, ncell, _, per = self._grid([pos], float(h.max(initial=0.0)))
         return _bin(pos, origin, inv_size, ncell, per)[1]
@@ -416,8 +351,6 @@ class NeighbourFinder:
         return self._finish(index, count, overlap, qpos, qh, qorder, allow_overlap)
 
     def _find_tree(self, pos, h, qpos, qh, same, allow_overlap=False) -> NeighbourList:
-        from .kdtree import build_tree, tree_search
-
         lo, length, per = self.box.arrays()
         for d in range(self.box.ndim):
             if per[d] and self.radius * max(h.max(initial=0.0), qh.max(initial=0.0)) > 0.5 * length[d]:

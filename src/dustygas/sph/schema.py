@@ -13,7 +13,7 @@ from ..config import Param
 from .engine import SPHOptions
 from .kernels import KERNEL_NAMES
 
-__all__ = ["SPH_SCHEMA", "options_from_config"]
+__all__ = ["SPH_SCHEMA", "INVISCID", "options_from_config"]
 
 SPH_SCHEMA: dict[str, Param] = {
     "kernel": Param("cubic", "smoothing kernel", choices=KERNEL_NAMES),
@@ -40,6 +40,11 @@ SPH_SCHEMA: dict[str, Param] = {
     "reorder_every": Param(20, "steps between spatial re-orderings of the particle arrays (0: never)", min=0),
     "fixed_dt": Param(0.0, "fixed time step (0: adaptive)", "code time", min=0.0),
 }
+
+
+#: ``[sph]`` defaults of the smooth linear tests (sound waves, dusty boxes and waves, diffusion): no
+#: artificial viscosity or conductivity and no switch, ``with_defaults(SPH_SCHEMA, **INVISCID)``
+INVISCID: dict[str, float | str] = {"alpha": 0.0, "alpha_min": 0.0, "switch": "none", "alpha_u": 0.0}
 
 
 def options_from_config(section: Mapping) -> SPHOptions:
