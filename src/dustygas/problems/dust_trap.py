@@ -54,6 +54,7 @@ class DustTrap(Problem):
     name = "dust-trap"
     summary = "Gonzalez et al. (2017) self-induced dust trap: viscous two-fluid dusty disk with grain growth and " \
               "fragmentation."
+    smoke_overrides = ("disk.n_gas=400", "steps.max_level=8")
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=20 * ORBIT_10, dt_snapshot=5 * ORBIT_10, log_every=20),
         "sph": with_defaults(SPH_SCHEMA, switch="none", alpha=0.1, alpha_min=0.0, beta=0.0, alpha_u=0.0,

@@ -86,6 +86,8 @@ def orbits(t, radius: float, star_mass: float = 1.0):
 class SPHDisk(Problem):
     name = "sph-disk"
     summary = "3D locally isothermal protoplanetary gas disk (5-200 au, 5e-3 M_sun) with optional dust rings, in SPH."
+    #: a few cycles of 1e4-1e5 particles (tree, relaxation, deep block levels) take tens of seconds to minutes
+    smoke_overrides = ("disk.n_gas=600", "dust.n_ring=16", "steps.max_level=8")
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=10 * ORBIT_20, dt_snapshot=ORBIT_20, log_every=20),
         "sph": with_defaults(SPH_SCHEMA, switch="none", alpha=0.1, alpha_min=0.0, beta=0.0, alpha_u=0.0,
