@@ -14,11 +14,13 @@ import subprocess
 import sys
 from pathlib import Path
 
+import h5py
 import numpy as np
 import pytest
 
 from dustygas import api
 from dustygas.errors import ConfigError
+from dustygas.io.schema import UNDOCUMENTED
 from dustygas.physics.disk import eta_armitage, gas_azimuthal_velocity, pressure_exponent
 from dustygas.problems import get_problem
 from dustygas.sph import Box, EquationOfState, ParticleSet, SPHOptions
@@ -187,10 +189,21 @@ def test_grains_outside_the_epstein_regime_are_refused():
 _RUN = ["disk.n_gas=600", "dust.n_ring=30", "run.tlim=160", "run.dt_snapshot=80", "steps.dt_max=0.02"]
 
 
+def _undocumented(path):
+    names = []
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset)
+                     and o.attrs.get("units") == UNDOCUMENTED else None)
+    return names
+
+
 def test_disk_run_restarts_bit_identically(tmp_path):
     """A drift-ring run stopped after four blocks and restarted from its checkpoint ends identical,
-    bit for bit, to an uninterrupted run (snapshots and history)."""
+    bit for bit, to an uninterrupted run (snapshots and history); every dataset it writes (ring,
+    track and level fields, ring / track / block-step history columns) has documented units."""
     api.run("drift-ring", output=tmp_path / "ref", set=_RUN)
+    for path in [tmp_path / "ref" / "history.h5", *sorted((tmp_path / "ref" / "snapshots").glob("*.h5"))]:
+        assert _undocumented(path) == [], path
     cut = api.run("drift-ring", output=tmp_path / "cut", set=_RUN + ["run.max_cycles=4"])
     assert cut.status == "max_cycles"
     api.restart(tmp_path / "cut", set=["run.max_cycles=0"])

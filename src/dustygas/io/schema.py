@@ -123,6 +123,10 @@ SNAPSHOT_FIELDS: dict[str, Quantity] = {
     "drag_heating": Quantity(f"{SPECIFIC_ENERGY}/{TIME}", "frictional heating rate per unit mass"),
     "drag_acc": Quantity(ACCELERATION, "drag acceleration (two-fluid dust)"),
     "drag_min_stopping_time": Quantity(TIME, "shortest stopping time among the particle's drag pairs"),
+    # block individual time steps and disk runs (extra/)
+    "level": Quantity(ONE, "time-step level of the particle: its step is the block step / 2^level"),
+    "ring": Quantity(ONE, "index of the dust ring the particle belongs to (-1: none)"),
+    "track": Quantity(ONE, "index of the tracked gas particle (-1: not tracked)"),
 }
 
 #: History columns by exact name.
@@ -150,6 +154,12 @@ HISTORY_COLUMNS: dict[str, Quantity] = {
     "gas_vx": Quantity(VELOCITY, "mean gas velocity, x"),
     "gas_vy": Quantity(VELOCITY, "mean gas velocity, y"),
     "dust_vx": Quantity(VELOCITY, "mean particle velocity, x"),
+    "accreted_mass": Quantity(MASS, "mass accreted by the central star (sink)"),
+    "block_dt": Quantity(TIME, "longest (block) step of the individual time-step hierarchy"),
+    "levels": Quantity(ONE, "number of occupied time-step levels"),
+    "substeps": Quantity(ONE, "sub-steps of the finest level taken so far"),
+    "updates": Quantity(ONE, "particle updates of the last block step"),
+    "total_updates": Quantity(ONE, "particle updates since the start of the run"),
 }
 
 #: History columns by pattern (first match wins): per-axis and per-species families.
@@ -157,6 +167,13 @@ HISTORY_PATTERNS: list[tuple[str, Quantity]] = [
     (r"(particle_|total_)?momentum_[xyz]", Quantity(MOMENTUM, "total momentum component")),
     (r"angular_momentum_[xyz]", Quantity(ANGULAR_MOMENTUM, "total angular momentum component")),
     (r"species_\d+_v[xyz]", Quantity(VELOCITY, "mean velocity of one particle species")),
+    (r"ring\d+(_gas)?_n", Quantity(ONE, "number of dust particles of ring k (_gas: gas particles in its annulus)")),
+    (r"ring\d+(_gas)?_(mean|std)_(R|z)", Quantity(LENGTH, "mean / standard deviation of cylindrical R or height z "
+                                                 "of ring k's dust (_gas: of the gas in its annulus)")),
+    (r"ring\d+(_gas)?_(mean|std)_(vR|vz|dvphi|vphi)", Quantity(VELOCITY, "mean / standard deviation of v_R, v_z, "
+                                                               "v_phi - v_K or v_phi of ring k's dust (_gas: of the "
+                                                               "gas in its annulus)")),
+    (r"track\d+_[Rz]", Quantity(LENGTH, "cylindrical R or height z of tracked gas particle j (0: accreted)")),
     (r"mode_drho_[gp]_(re|im)", Quantity(ONE, "Fourier amplitude of the relative density perturbation (real/imaginary part)")),
     (r"mode_[uw][xyz]_(re|im)", Quantity(VELOCITY, "Fourier amplitude of the gas (u) or dust (w) velocity (real/imaginary part)")),
 ]

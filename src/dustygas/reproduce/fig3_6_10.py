@@ -81,7 +81,8 @@ def _mean_band(ax, x, mean, std):
 def _drift_columns(s, tag):
     from ..plot import Column
 
-    return [Column(f"orbits_{tag}", s.orbits, "orbits", "time in orbital periods at the ring's mean radius"),
+    return [Column(f"time_{tag}", s.time, "yr/2pi", "time (code units)"),
+            Column(f"orbits_{tag}", s.orbits, "orbits", "time in orbital periods at the ring's mean radius"),
             Column(f"mean_R_{tag}", s.mean_R, "au", "mean cylindrical radius of the dust"),
             Column(f"std_R_{tag}", s.std_R, "au", "standard deviation of the dust's radii"),
             Column(f"mean_vR_{tag}", s.mean_vR / s.v_kepler, "v_K", "mean radial velocity of the dust"),
@@ -91,24 +92,29 @@ def _drift_columns(s, tag):
                    "eq. 3.23 with the disk's gas rotation (eta) and radial velocity")]
 
 
-@figure("fig3.7", "Mean radial velocity of the tau_s = 1 dust ring vs time, with eq. 3.23 (drift-ring run)",
+@figure("fig3.7", "Mean radial velocity of the tau_s = 1 (and 10) dust rings vs time, with eq. 3.23 (drift-ring run)",
         cost="shares the drift-ring run")
 def fig3_7(output: Path, quick: bool = True, runs=None) -> list[Path]:
+    """The thesis's Figure 3.7 (tau_s = 1), with the tau_s = 10 ring of the same run below it."""
     from ..plot import house_style, new_figure, save_figure
 
     run = disk_run(False, output, quick, runs)
-    s = _series(run, 1.0)
+    cols = []
     with house_style():
-        fig, ax = new_figure(1, 1, width=5.5, height=3.6)
-        _mean_band(ax, s.orbits, s.mean_vR / s.v_kepler, s.std_vR / s.v_kepler)
-        ax.plot(s.orbits, s.drift_setup / s.v_kepler, "k--", lw=1.2, label=r"eq. 3.23, set-up $\eta$")
-        ax.plot(s.orbits, s.drift_disk / s.v_kepler, color="0.5", lw=1.0, label=r"eq. 3.23, the disk's gas")
-        ax.axhline(0.0, color="k", lw=0.5)
-        ax.set_xlabel(r"time [orbits at $\langle R\rangle$]")
-        ax.set_ylabel(r"$\langle v_R\rangle / v_K$")
-        ax.legend(fontsize=7)
-        return save_figure(fig, output / "fig3_7.png", _drift_columns(s, "tau1"),
-                           title="thesis Figure 3.7: mean radial velocity of the tau_s = 1 dust ring",
+        fig, axes = new_figure(2, 1, width=5.5, height=6.4)
+        for ax, taus in zip(axes, (1.0, 10.0)):
+            s = _series(run, taus)
+            _mean_band(ax, s.orbits, s.mean_vR / s.v_kepler, s.std_vR / s.v_kepler)
+            ax.plot(s.orbits, s.drift_setup / s.v_kepler, "k--", lw=1.2, label=r"eq. 3.23, set-up $\eta$")
+            ax.plot(s.orbits, s.drift_disk / s.v_kepler, color="0.5", lw=1.0, label=r"eq. 3.23, the disk's gas")
+            ax.axhline(0.0, color="k", lw=0.5)
+            ax.set_ylabel(r"$\langle v_R\rangle / v_K$")
+            ax.text(0.97, 0.9, rf"$\tau_s = {taus:g}$", transform=ax.transAxes, ha="right")
+            cols += _drift_columns(s, f"tau{taus:g}")
+        axes[0].legend(fontsize=7)
+        axes[1].set_xlabel(r"time [orbits at $\langle R\rangle$]")
+        return save_figure(fig, output / "fig3_7.png", padded(cols),
+                           title="thesis Figure 3.7: mean radial velocity of the dust rings",
                            description=_DESC.format(run=run))
 
 
