@@ -7,7 +7,7 @@ accretes particles within ``disk.accretion_radius``), a gas disk of 5e-3 M_sun w
 Gaussian, rotating with its pressure support. ``disk.relax = "rotation"`` (the default) then puts
 each gas particle on the circular orbit that balances the SPH forces it feels at the start
 (:func:`dustygas.sph.disk.balance_rotation`), which removes the epicyclic ringing of a discrete disk
-whose pressure forces differ from the analytic ones (with :math:`10^4` particles :math:`h \approx 2H` at
+whose pressure forces differ from the analytic ones (with :math:`10^4` particles :math:`h \\approx 2H` at
 20 au); ``"damped"`` first evolves the gas alone for ``disk.relax_orbits`` orbits at ``r_ref`` with its
 radial and vertical velocities damped on the local orbital time (:func:`dustygas.sph.disk.relax_disk`).
 The thesis used :math:`10^5` gas particles (the ``*-thesis`` presets); the defaults use
@@ -15,10 +15,10 @@ The thesis used :math:`10^5` gas particles (the ``*-thesis`` presets); the defau
 
 Time integration: hierarchical individual time steps with pairwise kicks
 (:mod:`dustygas.sph.timesteps`); ``steps.individual = false`` gives one global step. The artificial
-viscosity is the linear term alone, :math:`\alpha = 0.1`, :math:`\beta = 0`: the quadratic term acts on
+viscosity is the linear term alone, :math:`\\alpha = 0.1`, :math:`\\beta = 0`: the quadratic term acts on
 the Keplerian shear between neighbours (approaching pairs) and, at :math:`10^4` particles, drains the
 disk inside 15 au into the star within three orbits at 20 au (measured: 74 % of the 10-15 au annulus
-with :math:`\beta = 2`, 5 % with :math:`\beta = 0`).
+with :math:`\\beta = 2`, 5 % with :math:`\\beta = 0`).
 
 Dust rings (``dust.enabled``, ``dust.ring_radii``, ``dust.ring_taus``): ``dust.n_ring`` two-fluid dust particles each,
 on a midplane circle, of mass ``dust.mass_ratio`` times a gas particle's (so that they barely act on
@@ -28,8 +28,8 @@ projected form of thesis eq. 3.19 with the gas particle's kernel :math:`D_{ai}(h
 (``dust.drag_kernel = "gas"``, as eq. 3.19 is written; ``"average"`` is Laibe & Price 2012a), with the
 relative velocity taken at the dust particle: the gas velocity is extrapolated there with the gas
 particle's SPH velocity gradient (``dust.reconstruction = "gas"``). Without it the Keplerian shear
-across a kernel of :math:`h/R \approx 0.1` enters the relative velocity of every pair and, weighted by
-the density gradient, acts as a spurious tailwind: the :math:`\tau_s = 10` ring at 20 au then hardly
+across a kernel of :math:`h/R \\approx 0.1` enters the relative velocity of every pair and, weighted by
+the density gradient, acts as a spurious tailwind: the :math:`\\tau_s = 10` ring at 20 au then hardly
 drifts (measured +1e-4 v_K over two orbits instead of the -7e-4 to -9e-4 v_K of eq. 3.23).
 ``drift-ring`` holds the thesis's rings at 20 au (:math:`\\tau_s` = 1 and 10, Figs 3.6-3.9) and at
 52 au (:math:`\\tau_s = 1`, the unsplit curves of Figs 3.13-3.16) in one run, since the rings do not
