@@ -17,6 +17,7 @@ import pytest
 from dustygas import api
 from dustygas.analysis.disk import mean_drift, ring_series
 from dustygas.problems import get_problem
+from dustygas.problems.sph_disk import disk_model
 from dustygas.sph.disk import cylindrical
 from dustygas.sph.particles import GAS
 
@@ -91,10 +92,12 @@ def test_tau10_ring_drifts_as_eq_3_23_with_the_disks_gas(tmp_path):
 
 
 def test_splitting_halves_the_spacing_and_keeps_the_density():
-    """The split disk at t = 0: the SPH density of the gas in annuli within 3 % of the unsplit disk's
-    (measured 1.6 %), the spacing ratio l_u/l_s within 5 % of 2, 4^(1/3) and 2^(1/3) in the eight-,
-    four- and two-fold zones; the split disk with a dust ring advances two blocks.
-    Cost: 25 000 + 10 000 particles, one evaluation each and two blocks, 20 s quiet."""
+    """The split disk at t = 0: the midplane SPH density (|z| < H/2) in annuli between 32 and 88 au
+    within 9 % of the analytic disk's (measured 1.2-8.0 %; the unsplit disk's 1.7-11.4 %, its h being
+    1.5-2 H so that it smooths the vertical profile more) and on average no farther from it than the
+    unsplit disk's (measured mean 3.7 % against 4.6 %); the spacing ratio l_u/l_s within 5 % of 2,
+    4^(1/3) and 2^(1/3) in the eight-, four- and two-fold zones; the split disk with a dust ring
+    advances two blocks. Cost: 30 000 + 10 000 particles, one evaluation each and two blocks, 20 s quiet."""
     unsplit = _engine("dust.enabled=true", "dust.ring_radii=52")
     split = _engine("dust.enabled=true", "dust.ring_radii=52", "split.enabled=true")
     for eng in (unsplit, split):
@@ -107,9 +110,15 @@ def test_splitting_halves_the_spacing_and_keeps_the_density():
         k = np.digitize(R[mid], edges) - 1
         return np.array([f(p, gas, mid)[k == i].mean() for i in range(len(edges) - 1)])
     edges = np.array([22.0, 28.0, 32.0, 38.0, 45.0, 65.0, 72.0, 78.0, 82.0, 88.0])
-    rho = [binned(e, edges, lambda p, g, m: e.rho[g][m]) for e in (unsplit, split)]
+    model = disk_model(get_problem("sph-disk").config())
+
+    def analytic(p, g, m):
+        R, _ = cylindrical(p.pos[g][m])
+        return model.density(R) * np.exp(-0.5 * (p.pos[g][m][:, 2] / model.scale_height(R)) ** 2)
+
+    dev = [np.abs(binned(e, edges, lambda p, g, m: e.rho[g][m] / analytic(p, g, m)) - 1)[2:] for e in (unsplit, split)]
     spacing = [binned(e, edges, lambda p, g, m: (p.mass[g][m] / e.rho[g][m]) ** (1 / 3)) for e in (unsplit, split)]
-    assert np.abs(rho[1] / rho[0] - 1).max() < 0.03
+    assert dev[1].max() < 0.09 and dev[1].mean() <= dev[0].mean(), dev
     expected = np.array([2 ** (1 / 3), 0, 4 ** (1 / 3), 0, 2.0, 0, 4 ** (1 / 3), 0, 2 ** (1 / 3)])
     ratio = spacing[0] / spacing[1]
     zones = expected > 0
