@@ -5,7 +5,9 @@ Two runs: ``drift-ring`` (the thesis's disk with dust rings at 20 au, :math:`\\t
 :math:`\\tau_s = 1` ring at 52 au). By default (``quick``) the reduced presets run, through the run loop,
 into ``OUTPUT/runs/<preset>`` (a finished run there is reused); ``--full`` runs the ``*-thesis``
 presets (10^5 gas particles); ``--from RUN`` uses existing run directories instead, recognised by
-their configuration (split or not, ring radii and Stokes numbers).
+their configuration (split or not, ring radii and Stokes numbers). A run stopped before its end
+(SIGTERM, Ctrl-C) is continued from its newest checkpoint by the next figure that needs it, not
+started again.
 """
 
 from __future__ import annotations
@@ -48,12 +50,21 @@ def disk_run(split: bool, output: Path, quick: bool, runs: Sequence[str | Path] 
                 return Path(run)
         kind = "a split disk (split.enabled = true)" if split else "an unsplit disk with dust rings"
         raise UserError(f"--from: none of {', '.join(map(str, runs))} is a run of {kind}")
-    from ..api import run as run_problem
+    from ..api import restart, run as run_problem
+    from ..config import load_toml
+    from ..io.rundir import RunDirectory
 
     name = _PRESETS[split] + ("" if quick else "-thesis")
     path = Path(output) / "runs" / name
-    if not _finished(path):
-        run_problem(name, path, overwrite=True)
+    if _finished(path):
+        return path
+    rd = RunDirectory(path)
+    resumable = rd.config_file.exists() and load_toml(rd.config_file).get("dustygas", {}).get("problem") == name \
+        and bool(rd.checkpoints())
+    result = restart(path) if resumable else run_problem(name, path, overwrite=True)
+    if result.status != "finished":  # stopped (signal, wall time): keep it for the next call to resume
+        raise UserError(f"{path}: the {name} run stopped ({result.status}) at time {result.engine.t:.6g}; "
+                        "run the figure again to continue it from its checkpoint")
     return path
 
 
