@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import inspect
 import sys
 from pathlib import Path
 
@@ -27,8 +28,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--list", action="store_true", help="list the figures and stop")
     p.add_argument("-o", "--output", default="figures", metavar="DIR", help="output directory (default: figures)")
     p.add_argument("--full", action="store_true", help="thesis-scale resolution instead of the quick default")
-    p.add_argument("--from", dest="run", metavar="RUN",
-                   help="take the figures that come from a simulation (Figs 1.10, 1.13, 4.7-4.10) from this finished run")
+    p.add_argument("--from", dest="runs", action="append", metavar="RUN",
+                   help="use this run directory instead of running (figures made from runs; repeat for several;"
+                        " a figure drawn from one run, like Figs 4.7-4.10, takes the first)")
 
 
 def main(args: argparse.Namespace) -> int:
@@ -45,6 +47,14 @@ def main(args: argparse.Namespace) -> int:
     if not names:
         raise UserError("reproduce: name at least one figure, or --all (see: dustygas reproduce --list)")
     specs = [get_figure(n) for n in names]  # validate every name before writing anything
+    runs = getattr(args, "runs", None)
+    if runs:
+        for spec in specs:
+            if not {"runs", "run"} & set(inspect.signature(spec.function).parameters):
+                raise UserError(f"reproduce --from: {spec.name} is not made from a run directory")
+        for run in runs:
+            if not Path(run).is_dir():
+                raise UserError(f"reproduce --from {run}: no such run directory")
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise UserError(f"--output {out}: exists and is not a directory")
@@ -61,7 +71,7 @@ def main(args: argparse.Namespace) -> int:
             exp = c["expected"] if isinstance(c["expected"], str) else f"{c['expected']:.6g}"
             print(f"  {verdict} {c['name']}: {c['value']:.6g} vs {exp} ({c['tolerance']})", file=sys.stderr)
 
-    extra = {"run": Path(args.run)} if args.run else {}
+    extra = {"runs": list(runs), "run": Path(runs[0])} if runs else {}
     records = make_figures([s.name for s in specs], out, quick=not args.full, log=log, **extra)
     failed = [r.name for r in records if not r.passed]
     print(f"gallery: {out / 'index.html'} ({len(records)} figures"

@@ -127,6 +127,10 @@ SNAPSHOT_FIELDS: dict[str, Quantity] = {
     "drag_heating": Quantity(f"{SPECIFIC_ENERGY}/{TIME}", "frictional heating rate per unit mass"),
     "drag_acc": Quantity(ACCELERATION, "drag acceleration (two-fluid dust)"),
     "drag_min_stopping_time": Quantity(TIME, "shortest stopping time among the particle's drag pairs"),
+    # block individual time steps and disk runs (extra/)
+    "level": Quantity(ONE, "time-step level of the particle: its step is the block step / 2^level"),
+    "ring": Quantity(ONE, "index of the dust ring the particle belongs to (-1: none)"),
+    "track": Quantity(ONE, "index of the tracked gas particle (-1: not tracked)"),
 }
 
 #: History columns by exact name.
@@ -162,6 +166,12 @@ HISTORY_COLUMNS: dict[str, Quantity] = {
     "gravity_energy": Quantity(ENERGY, "self-gravitational energy of the particles, W = 1/2 sum rho_p Phi V "
                                "(0 before gravity.t_on; vacuum z: the planar mode's Phi = 2 pi G Sigma |z| makes "
                                "a uniform layer's W positive)"),
+    "accreted_mass": Quantity(MASS, "mass accreted by the central star (sink)"),
+    "block_dt": Quantity(TIME, "longest (block) step of the individual time-step hierarchy"),
+    "levels": Quantity(ONE, "number of occupied time-step levels"),
+    "substeps": Quantity(ONE, "sub-steps of the finest level taken so far"),
+    "updates": Quantity(ONE, "particle updates of the last block step"),
+    "total_updates": Quantity(ONE, "particle updates since the start of the run"),
 }
 
 #: History columns by pattern (first match wins): per-axis and per-species families.
@@ -179,6 +189,13 @@ HISTORY_PATTERNS: list[tuple[str, Quantity]] = [
     (r"particle_momentum_lost_[xyz]", Quantity(MOMENTUM, "momentum carried out by the particles that left")),
     (r"(particle|gas)_terms_impulse_[xyz]", Quantity(MOMENTUM, "impulse of the external force terms on the "
                                                               "particles or the gas (time integral)")),
+    (r"ring\d+(_gas)?_n", Quantity(ONE, "number of dust particles of ring k (_gas: gas particles in its annulus)")),
+    (r"ring\d+(_gas)?_(mean|std)_(R|z)", Quantity(LENGTH, "mean / standard deviation of cylindrical R or height z "
+                                                 "of ring k's dust (_gas: of the gas in its annulus)")),
+    (r"ring\d+(_gas)?_(mean|std)_(vR|vz|dvphi|vphi)", Quantity(VELOCITY, "mean / standard deviation of v_R, v_z, "
+                                                               "v_phi - v_K or v_phi of ring k's dust (_gas: of the "
+                                                               "gas in its annulus)")),
+    (r"track\d+_[Rz]", Quantity(LENGTH, "cylindrical R or height z of tracked gas particle j (0: accreted)")),
     (r"mode_drho_[gp]_(re|im)", Quantity(ONE, "Fourier amplitude of the relative density perturbation (real/imaginary part)")),
     (r"mode_[uw][xyz]_(re|im)", Quantity(VELOCITY, "Fourier amplitude of the gas (u) or dust (w) velocity (real/imaginary part)")),
 ]

@@ -60,6 +60,8 @@ __all__ = [
     "viscous_radial_velocity",
     "viscous_radial_velocity_power_law",
     "radial_drift_velocity",
+    "azimuthal_drift_velocity",
+    "vertical_pressure_gradient_exponent",
     "PowerLawDisk",
 ]
 
@@ -214,6 +216,35 @@ def radial_drift_velocity(
     """
     taus = _f(taus)
     return (_f(v_r_gas) - _f(eta) * _f(v_K) * taus) / (1.0 + taus**2)
+
+
+def azimuthal_drift_velocity(taus: ArrayLike, eta: ArrayLike, v_K: ArrayLike = 1.0) -> np.ndarray:
+    """Azimuthal velocity of drifting dust relative to Keplerian, :math:`v_{\\theta} - v_K = -\\tfrac12\\eta v_K/(1+\\tau_s^2)`.
+
+    The companion of eq. 3.23 for :math:`v_{r,g} = 0` (Nakagawa, Sekiya & Hayashi 1986 at vanishing
+    dust-to-gas ratio; Takeuchi & Lin 2002, eq. 17), ``eta`` in the convention of eq. 3.24: tightly
+    coupled dust moves with the gas (:math:`v_K\\sqrt{1-\\eta} \\approx v_K(1-\\eta/2)`), decoupled dust
+    is Keplerian.
+
+    >>> float(azimuthal_drift_velocity(1.0, 7.5e-3))
+    -0.001875
+    """
+    return -0.5 * _f(eta) * _f(v_K) / (1.0 + _f(taus) ** 2)
+
+
+def vertical_pressure_gradient_exponent(p: ArrayLike, q: ArrayLike, z_over_H: ArrayLike) -> np.ndarray:
+    """:math:`\\partial\\ln P/\\partial\\ln R` at height :math:`z` of a vertically isothermal Gaussian disk.
+
+    With :math:`\\rho = \\Sigma/(\\sqrt{2\\pi}H)\\,e^{-z^2/2H^2}`, :math:`\\Sigma \\propto R^{-p}`,
+    :math:`c_s^2 \\propto R^{-q}` and :math:`H \\propto R^{(3-q)/2}`:
+    :math:`\\partial\\ln P/\\partial\\ln R = -n + \\tfrac{3-q}{2}\\,z^2/H^2` with the midplane exponent
+    :math:`n = p + q/2 + 3/2` (:func:`pressure_exponent`). The gas then rotates with
+    :math:`v_\\theta^2 = GMR^2/(R^2+z^2)^{3/2} + c_s^2\\,\\partial\\ln P/\\partial\\ln R`.
+
+    >>> float(vertical_pressure_gradient_exponent(1.0, 0.5, 0.0))
+    -2.75
+    """
+    return -pressure_exponent(p, q) + 0.5 * (3.0 - _f(q)) * _f(z_over_H) ** 2
 
 
 @dataclass(frozen=True)

@@ -32,7 +32,7 @@ from .kernels import kernel_shape
 from .neighbours import minimum_image
 
 __all__ = ["H_CONVERGED", "H_NEEDS_NEIGHBOURS", "H_NOT_CONVERGED", "solve_smoothing_lengths",
-           "gasoline2_correction"]
+           "solve_one_smoothing_length", "gasoline2_correction"]
 
 H_CONVERGED = 0
 H_NEEDS_NEIGHBOURS = 1  # the root lies beyond the radius the neighbour list is complete for
@@ -48,66 +48,73 @@ def solve_smoothing_lengths(pos, mass, h, index, count, h_search, shape, norm, r
     ``status`` (``H_*`` codes) and ``iterations`` are outputs. The neighbour list must be complete
     for ``h_search`` (every neighbour with :math:`r < R h^{\\rm search}_a`).
     """
-    n = pos.shape[0]
+    for a in prange(pos.shape[0]):
+        h[a], rho[a], omega[a], status[a], iterations[a] = solve_one_smoothing_length(
+            pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], index[a], count[a], pos, mass, shape,
+            norm, ndim, hfact, length, periodic, tol, maxiter)
+
+
+@njit(inline="always")
+def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, pos, mass, shape, norm, ndim, hfact,
+                               length, periodic, tol, maxiter):
+    """Newton-Raphson with bisection fallback for one particle at ``(xa, ya, za)`` of mass ``ma``
+    whose neighbours are ``pos[row[:n_row]]`` (complete within :math:`R h_{\\rm search}`).
+
+    Returns ``(h, rho, omega, status, iterations)`` (module docstring); shared by
+    :func:`solve_smoothing_lengths` and the active-particle kernels of individual time steps.
+    """
     f0 = kernel_shape(shape, 0.0)[0]
-    for a in prange(n):
-        ma = mass[a]
-        target = ma * hfact**ndim
-        xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-        h_lo = 0.0
-        h_hi = h_search[a]
-        hi_known = False  # F(h_hi) < 0 established by an evaluation
-        ha = min(h[a], h_hi)
-        st = H_NOT_CONVERGED
-        om = 1.0
-        it = 0
-        while it < maxiter:
-            it += 1
-            hinv = 1.0 / ha
-            hinv_d = hinv**ndim
-            wsum = ma * f0
-            dwsum = ma * ndim * f0
-            for k in range(count[a]):
-                b = index[a, k]
-                dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
-                dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
-                dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
-                q = np.sqrt(dx * dx + dy * dy + dz * dz) * hinv
-                f, df = kernel_shape(shape, q)  # zero beyond the support: no branch
-                mb = mass[b]
-                wsum += mb * f
-                dwsum += mb * (ndim * f + q * df)
-            rho_sum = norm * hinv_d * wsum
-            drho_dh = -norm * hinv_d * hinv * dwsum
-            rho_h = target * hinv_d
-            fval = rho_h - rho_sum
-            om = 1.0 + ha * drho_dh / (ndim * rho_sum)
-            dfdh = -ndim * rho_h * hinv - drho_dh
-            if fval > 0.0:
-                h_lo = ha
+    target = ma * hfact**ndim
+    h_lo = 0.0
+    h_hi = h_search
+    hi_known = False  # F(h_hi) < 0 established by an evaluation
+    ha = min(h_guess, h_hi)
+    st = H_NOT_CONVERGED
+    om = 1.0
+    it = 0
+    while it < maxiter:
+        it += 1
+        hinv = 1.0 / ha
+        hinv_d = hinv**ndim
+        wsum = ma * f0
+        dwsum = ma * ndim * f0
+        for k in range(n_row):
+            b = row[k]
+            dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
+            dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
+            dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
+            q = np.sqrt(dx * dx + dy * dy + dz * dz) * hinv
+            f, df = kernel_shape(shape, q)  # zero beyond the support: no branch
+            mb = mass[b]
+            wsum += mb * f
+            dwsum += mb * (ndim * f + q * df)
+        rho_sum = norm * hinv_d * wsum
+        drho_dh = -norm * hinv_d * hinv * dwsum
+        rho_h = target * hinv_d
+        fval = rho_h - rho_sum
+        om = 1.0 + ha * drho_dh / (ndim * rho_sum)
+        dfdh = -ndim * rho_h * hinv - drho_dh
+        if fval > 0.0:
+            h_lo = ha
+        else:
+            h_hi = ha
+            hi_known = True
+        if fval > 0.0 and ha >= h_search:
+            st = H_NEEDS_NEIGHBOURS
+            break
+        h_new = ha - fval / dfdh if dfdh < 0.0 else -1.0
+        converged = abs(h_new - ha) < tol * ha
+        if not converged and not (h_lo < h_new < h_hi):
+            if h_new >= h_hi and not hi_known:
+                h_new = h_hi  # look at the edge of the list first
             else:
-                h_hi = ha
-                hi_known = True
-            if fval > 0.0 and ha >= h_search[a]:
-                st = H_NEEDS_NEIGHBOURS
-                break
-            h_new = ha - fval / dfdh if dfdh < 0.0 else -1.0
-            converged = abs(h_new - ha) < tol * ha
-            if not converged and not (h_lo < h_new < h_hi):
-                if h_new >= h_hi and not hi_known:
-                    h_new = h_hi  # look at the edge of the list first
-                else:
-                    h_new = 0.5 * (h_lo + h_hi)  # bisection
-                converged = h_hi - h_lo < tol * ha
-            ha = h_new
-            if converged:
-                st = H_CONVERGED
-                break
-        h[a] = ha
-        rho[a] = target / ha**ndim
-        omega[a] = om
-        status[a] = st
-        iterations[a] = it
+                h_new = 0.5 * (h_lo + h_hi)  # bisection
+            converged = h_hi - h_lo < tol * ha
+        ha = h_new
+        if converged:
+            st = H_CONVERGED
+            break
+    return ha, target / ha**ndim, om, st, it
 
 
 @njit(parallel=True, cache=True)

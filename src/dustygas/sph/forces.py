@@ -48,7 +48,8 @@ from .kernels import kernel_dshape
 from .neighbours import minimum_image
 from .viscosity import conductivity_signal, signal_speed, viscous_pair
 
-__all__ = ["PRICE2012", "GASOLINE2", "FORCE_FORMS", "pack_particles", "hydro_forces"]
+__all__ = ["PRICE2012", "GASOLINE2", "FORCE_FORMS", "NPACK", "pack_particles", "pack_row", "pressure_pair",
+           "hydro_forces"]
 
 PRICE2012 = 0
 GASOLINE2 = 1
@@ -63,27 +64,50 @@ NPACK = 17
 def pack_particles(pos, vel, mass, h, rho, omega, P, cs, alpha, u, fcorr, norm, ndim, form, out):
     """Copy what a neighbour contributes into one row per particle (``out`` is (N, NPACK))."""
     for a in prange(pos.shape[0]):
-        hinv = 1.0 / h[a]
-        out[a, _X] = pos[a, 0]
-        out[a, _Y] = pos[a, 1]
-        out[a, _Z] = pos[a, 2]
-        out[a, _VX] = vel[a, 0]
-        out[a, _VY] = vel[a, 1]
-        out[a, _VZ] = vel[a, 2]
-        out[a, _HINV] = hinv
-        out[a, _GRADNORM] = norm * hinv ** (ndim + 1)
-        out[a, _M] = mass[a]
-        out[a, _P] = P[a]
-        out[a, _RHOINV] = 1.0 / rho[a]
-        out[a, _OMBAR] = 1.0 / (omega[a] * rho[a])
-        if form == PRICE2012:
-            out[a, _FORM] = P[a] / (omega[a] * rho[a] * rho[a])
-        else:
-            out[a, _FORM] = fcorr[a]
-        out[a, _CS] = cs[a]
-        out[a, _ALPHA] = alpha[a]
-        out[a, _U] = u[a]
-        out[a, _RHO] = rho[a]
+        pack_row(out, a, pos, vel[a, 0], vel[a, 1], vel[a, 2], mass, h, rho, omega, P, cs, alpha, u, fcorr[a], norm,
+                 ndim, form)
+
+
+@njit(inline="always")
+def pack_row(out, a, pos, vx, vy, vz, mass, h, rho, omega, P, cs, alpha, u, fcorr_a, norm, ndim, form):
+    """Row ``a`` of the packed table (:func:`pack_particles`) with velocity ``(vx, vy, vz)`` (the predicted
+    one) and the GASOLINE2 factor ``fcorr_a``; shared by the individual-time-step kernels."""
+    hinv = 1.0 / h[a]
+    out[a, _X] = pos[a, 0]
+    out[a, _Y] = pos[a, 1]
+    out[a, _Z] = pos[a, 2]
+    out[a, _VX] = vx
+    out[a, _VY] = vy
+    out[a, _VZ] = vz
+    out[a, _HINV] = hinv
+    out[a, _GRADNORM] = norm * hinv ** (ndim + 1)
+    out[a, _M] = mass[a]
+    out[a, _P] = P[a]
+    out[a, _RHOINV] = 1.0 / rho[a]
+    out[a, _OMBAR] = 1.0 / (omega[a] * rho[a])
+    if form == PRICE2012:
+        out[a, _FORM] = P[a] / (omega[a] * rho[a] * rho[a])
+    else:
+        out[a, _FORM] = fcorr_a
+    out[a, _CS] = cs[a]
+    out[a, _ALPHA] = alpha[a]
+    out[a, _U] = u[a]
+    out[a, _RHO] = rho[a]
+
+
+@njit(inline="always")
+def pressure_pair(form, form_a, form_b, dW_a, dW_b, P_a, P_b, rhoinv_a, rhoinv_b, vdotr):
+    """Pressure part of the pair force and of :math:`du_a/dt` (module docstring), per unit :math:`m_b`.
+
+    ``form_a`` is :math:`P_a/(\\Omega_a\\rho_a^2)` (Price 2012) or :math:`f_a` (GASOLINE2); ``dW`` are
+    :math:`\\partial W/\\partial r` with each particle's :math:`h`. Returns ``(s, du)``: the force on
+    :math:`a` is :math:`-m_b s\\,\\hat r_{ab}` and ``s`` is symmetric in :math:`a \\leftrightarrow b` bit for bit.
+    """
+    if form == PRICE2012:
+        return form_a * dW_a + form_b * dW_b, form_a * vdotr * dW_a
+    rr = rhoinv_a * rhoinv_b  # symmetric product: bitwise antisymmetric pair force
+    gbar = 0.5 * (form_a * dW_a + form_b * dW_b)
+    return (P_a + P_b) * rr * gbar, P_a * rr * vdotr * gbar
 
 
 @njit(parallel=True, cache=True)
@@ -143,14 +167,8 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
             dvz = vza - pb[_VZ]
             vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
             # pressure
-            if form == PRICE2012:
-                s = form_a * dW_a + pb[_FORM] * dW_b
-                du += form_a * vdotr * dW_a * m_b
-            else:
-                rr = rhoinv_a * pb[_RHOINV]  # symmetric product: bitwise antisymmetric pair force
-                gbar = 0.5 * (form_a * dW_a + pb[_FORM] * dW_b)
-                s = (P_a + pb[_P]) * rr * gbar
-                du += P_a * rr * vdotr * gbar * m_b
+            s, du_a = pressure_pair(form, form_a, pb[_FORM], dW_a, dW_b, P_a, pb[_P], rhoinv_a, pb[_RHOINV], vdotr)
+            du += du_a * m_b
             # artificial viscosity (zero for receding pairs)
             qa, qb = viscous_pair(vdotr, alpha_a, cs_a, pb[_ALPHA], pb[_CS], beta, ombar_a, pb[_OMBAR])
             s += qa * dW_a + qb * dW_b

@@ -98,19 +98,26 @@ class GrainGrowth:
             raise SetupError("grain growth: alpha, rossby, omega, grain density, minimum size and c_size must be "
                              "> 0 and v_frag >= 0")
 
-    def rate(self, size: np.ndarray, rho_d: np.ndarray, ts: np.ndarray, cs: np.ndarray) -> np.ndarray:
+    def rate(self, size: np.ndarray, rho_d: np.ndarray, ts: np.ndarray, cs: np.ndarray,
+             omega: np.ndarray | None = None) -> np.ndarray:
         """:math:`ds/dt` (eq. 3.6) with :math:`V_{\\rm rel}(t_s\\Omega)` (eq. 3.7); zero for fragmenting grains
-        already at the minimum size."""
-        v_rel = relative_velocity(stokes_number(ts, self.omega), cs, self.alpha, self.rossby)
+        already at the minimum size. ``omega``: the local orbital frequency of each grain (a global
+        disk) instead of the constant :attr:`omega`."""
+        v_rel = relative_velocity(stokes_number(ts, self.omega if omega is None else omega), cs, self.alpha,
+                                  self.rossby)
         rate = growth_rate(rho_d, self.grain_density, v_rel, self.v_frag)
         return np.where((rate < 0.0) & (size <= self.min_size), 0.0, rate)
 
+    def timesteps(self, size: np.ndarray, rate: np.ndarray) -> np.ndarray:
+        """:math:`c\\,s/|ds/dt|` of each grain (infinite for grains within twice the minimum size or not
+        changing)."""
+        big = (size > 2.0 * self.min_size) & (rate != 0.0)
+        with np.errstate(divide="ignore"):
+            return np.where(big, self.c_size * size / np.abs(rate), math.inf)
+
     def timestep(self, size: np.ndarray, rate: np.ndarray) -> float:
         """:math:`\\min c\\,s/|ds/dt|` over grains larger than twice the minimum size."""
-        big = (size > 2.0 * self.min_size) & (rate != 0.0)
-        if not big.any():
-            return math.inf
-        return float(self.c_size * np.min(size[big] / np.abs(rate[big])))
+        return float(np.min(self.timesteps(size, rate), initial=math.inf))
 
 
 def enforce_minimum_size(size: np.ndarray, min_size: float) -> None:

@@ -42,7 +42,8 @@ DUST_SCHEMA: dict[str, Param] = {
     "form": Param("projected", "two-fluid drag: projected along the pair (eq. 3.19) or not (eq. 3.18)",
                   choices=DRAG_FORMS),
     "reconstruction": Param("mc", "two-fluid: velocity reconstruction at the pair midpoint (Price & Laibe 2020) "
-                            "with the MC limiter, without limiter, or none", choices=RECONSTRUCTIONS),
+                            "with the MC limiter, without limiter, the gas velocity extrapolated to the dust particle with the gas's "
+                            "gradient (gas), or none", choices=RECONSTRUCTIONS),
     "integration": Param("explicit", "two-fluid drag in time: explicit (dt <= c_drag t_s, eq. 2.15) or pairwise "
                          "exponential (implicit)", choices=DRAG_INTEGRATIONS),
     "c_drag": Param(0.9, "explicit-drag time-step factor: dt <= c_drag t_s", min=0.0, min_open=True),

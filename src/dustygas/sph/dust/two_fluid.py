@@ -36,13 +36,16 @@ from ..modules import SPHModule
 from ..neighbours import NeighbourFinder
 from ..particles import DUST, GAS
 from .drag_law import DragLaw
-from .two_fluid_kernels import drag_pass, pack, velocity_gradient
+from .two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pass, pack, velocity_gradient
 
-__all__ = ["TwoFluidOptions", "TwoFluidDust", "RECONSTRUCTIONS", "DRAG_FORMS", "DRAG_INTEGRATIONS"]
+__all__ = ["TwoFluidOptions", "TwoFluidDust", "RECONSTRUCTIONS", "DRAG_FORMS", "DRAG_INTEGRATIONS", "DRAG_KERNELS"]
 
-RECONSTRUCTIONS = ("mc", "none", "unlimited")
+RECONSTRUCTIONS = ("mc", "none", "unlimited", "gas")
 DRAG_FORMS = ("projected", "non-projected")
 DRAG_INTEGRATIONS = ("explicit", "implicit")
+#: smoothing lengths of the drag kernel: the average of the pair's (Laibe & Price 2012a) or the gas
+#: particle's alone, :math:`D_{ai}(h_a)` as thesis eq. 3.19 writes it
+DRAG_KERNELS = ("average", "gas")
 ACC, HEAT, TMIN = "drag_acc", "drag_heating", "drag_min_stopping_time"
 
 
@@ -56,6 +59,7 @@ class TwoFluidOptions:
     integration: str = "explicit"
     c_drag: float = 0.9
     heating: bool = True
+    drag_kernel: str = "average"
 
     def __post_init__(self) -> None:
         checks = [
@@ -63,6 +67,7 @@ class TwoFluidOptions:
             (self.reconstruction in RECONSTRUCTIONS, f"reconstruction must be one of {', '.join(RECONSTRUCTIONS)}"),
             (self.integration in DRAG_INTEGRATIONS, f"integration must be one of {', '.join(DRAG_INTEGRATIONS)}"),
             (self.c_drag > 0, "c_drag must be > 0"),
+            (self.drag_kernel in DRAG_KERNELS, f"drag_kernel must be one of {', '.join(DRAG_KERNELS)}"),
         ]
         for ok, msg in checks:
             if not ok:
@@ -157,11 +162,14 @@ class TwoFluidDust(SPHModule):
         t_g = np.empty(g.size)
         t_d = np.empty(d.size)
         nl_gd = self.finder.find(pos_d, h_d, query_pos=pos_g, query_h=h_g, allow_overlap=True)
+        gas_kernel = o.drag_kernel == "gas"
         drag_pass(table_g, grad_g, table_d, grad_d, nl_gd.index, nl_gd.count, k.shape, k.ndim, length, per,
-                  c0, projected, recon, limit, dt_imp, heat, acc_g, q_g, t_g)
+                  c0, projected, recon, limit, dt_imp, heat, acc_g, q_g, t_g, KERNEL_OWN if gas_kernel else KERNEL_AVERAGE,
+                  1 if o.reconstruction == "gas" else 0)
         nl_dg = self.finder.find(pos_g, h_g, query_pos=pos_d, query_h=h_d, allow_overlap=True)
         drag_pass(table_d, grad_d, table_g, grad_g, nl_dg.index, nl_dg.count, k.shape, k.ndim, length, per,
-                  c0, projected, recon, limit, dt_imp, False, acc_d, q_d, t_d)
+                  c0, projected, recon, limit, dt_imp, False, acc_d, q_d, t_d, KERNEL_OTHER if gas_kernel else KERNEL_AVERAGE,
+                  2 if o.reconstruction == "gas" else 0)
         drag_acc = ex[ACC]
         drag_acc[g] = acc_g
         drag_acc[d] = acc_d

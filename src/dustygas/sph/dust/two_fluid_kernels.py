@@ -53,7 +53,8 @@ from numba import njit, prange
 from ..kernels import kernel_dshape, kernel_shape
 from ..neighbours import minimum_image
 
-__all__ = ["pack", "velocity_gradient", "drag_pass", "mc_limiter"]
+__all__ = ["pack", "velocity_gradient", "drag_pass", "drag_pair", "mc_limiter", "KERNEL_AVERAGE", "KERNEL_OWN",
+           "KERNEL_OTHER"]
 
 
 def pack(*columns) -> np.ndarray:
@@ -133,9 +134,15 @@ def _phi(x):
 _X, _Y, _Z, _VX, _VY, _VZ, _M, _HINV, _WN, _RHO, _K, _FX, _FY, _FZ = range(14)
 
 
+#: which smoothing lengths the drag kernel of a pair uses: the average of both (Laibe & Price 2012a),
+#: or only the gas particle's, :math:`D_{ai}(h_a)` as thesis eq. 3.19 writes it (``a`` or ``j`` the gas)
+KERNEL_AVERAGE, KERNEL_OWN, KERNEL_OTHER = 0, 1, 2
+
+
 @njit(parallel=True, cache=True)
 def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, periodic,
-              c_const, projected, recon, limit, dt_implicit, heat, acc, dudt, tmin):
+              c_const, projected, recon, limit, dt_implicit, heat, acc, dudt, tmin, kernel_side=KERNEL_AVERAGE,
+              gas_slope=0):
     """Drag on every particle of one species from its neighbours of the other (module docstring).
 
     ``table``/``otable`` hold one row per particle: position, velocity, mass, :math:`1/h`, the kernel
@@ -144,16 +151,13 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
     acceleration (read only for the implicit average). ``recon``: reconstruct with the velocity
     gradients ``grad``/``ograd`` (``limit``: MC limiter); ``dt_implicit > 0``: the pairwise
     exponential average over that step. Overwrites ``acc``, ``dudt`` (heating, if ``heat``) and
-    ``tmin``, the smallest pair stopping time seen by each particle.
+    ``tmin``, the smallest pair stopping time seen by each particle. ``kernel_side`` selects the
+    smoothing lengths of the drag kernel (``KERNEL_*``); ``gas_slope`` (1: the ``table`` species is the
+    gas, 2: the other one) replaces the midpoint reconstruction by the gas velocity extrapolated to the
+    dust particle with the gas's own gradient, :math:`w^* = w - \\sigma_{\\rm gas}`.
     """
-    nu = float(ndim)
     for a in prange(table.shape[0]):
         pa = table[a]
-        xa, ya, za = pa[_X], pa[_Y], pa[_Z]
-        hinv_a = pa[_HINV]
-        wn_a = pa[_WN]
-        rho_a = pa[_RHO]
-        k_a = pa[_K]
         ax = 0.0
         ay = 0.0
         az = 0.0
@@ -161,66 +165,16 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
         tm = math.inf
         for kk in range(count[a]):
             j = index[a, kk]
-            pj = otable[j]
-            dx = minimum_image(pj[_X] - xa, length[0], periodic[0])
-            dy = minimum_image(pj[_Y] - ya, length[1], periodic[1])
-            dz = minimum_image(pj[_Z] - za, length[2], periodic[2])
-            r2 = dx * dx + dy * dy + dz * dz
-            if r2 == 0.0:
-                continue  # coincident particles: D = 0 and no direction
-            r = math.sqrt(r2)
-            rinv = 1.0 / r
-            rx, ry, rz = dx * rinv, dy * rinv, dz * rinv
-            qa = r * hinv_a
-            qj = r * pj[_HINV]
-            fa = kernel_shape(shape, qa)[0]
-            fj = kernel_shape(shape, qj)[0]
-            if fa == 0.0 and fj == 0.0:
+            fx, fy, fz, dq, tpair = drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic,
+                                              c_const, projected, recon, limit, dt_implicit, heat, kernel_side,
+                                              gas_slope)
+            if tpair == math.inf:
                 continue
-            rho_sum = rho_a + pj[_RHO]
-            kappa = k_a * pj[_K] + c_const / rho_sum
-            tpair = 1.0 / (rho_sum * kappa)
             tm = min(tm, tpair)
-            wx = pj[_VX] - pa[_VX]
-            wy = pj[_VY] - pa[_VY]
-            wz = pj[_VZ] - pa[_VZ]
-            if projected:
-                weight = nu * 0.5 * (qa * qa * fa * wn_a + qj * qj * fj * pj[_WN])
-                w = wx * rx + wy * ry + wz * rz
-                ws = w
-                if recon:
-                    sa = r * _project(grad, a, rx, ry, rz)
-                    sj = r * _project(ograd, j, rx, ry, rz)
-                    ws = w - (mc_limiter(sa, sj) if limit else 0.5 * (sa + sj))
-                if dt_implicit > 0.0:
-                    df = (pj[_FX] - pa[_FX]) * rx + (pj[_FY] - pa[_FY]) * ry + (pj[_FZ] - pa[_FZ]) * rz
-                    ph = _phi(dt_implicit / tpair)
-                    ws = ws * ph + df * tpair * (1.0 - ph)
-                f = pj[_M] * kappa * ws * weight
-                ax += f * rx
-                ay += f * ry
-                az += f * rz
-                if heat:
-                    du += f * w
-            else:
-                weight = 0.5 * (fa * wn_a + fj * pj[_WN])
-                wsx, wsy, wsz = wx, wy, wz
-                if recon:
-                    wsx -= _component_slope(grad, ograd, a, j, 0, r, rx, ry, rz, limit)
-                    wsy -= _component_slope(grad, ograd, a, j, 1, r, rx, ry, rz, limit)
-                    wsz -= _component_slope(grad, ograd, a, j, 2, r, rx, ry, rz, limit)
-                if dt_implicit > 0.0:
-                    ph = _phi(dt_implicit / tpair)
-                    c2 = tpair * (1.0 - ph)
-                    wsx = wsx * ph + (pj[_FX] - pa[_FX]) * c2
-                    wsy = wsy * ph + (pj[_FY] - pa[_FY]) * c2
-                    wsz = wsz * ph + (pj[_FZ] - pa[_FZ]) * c2
-                f = pj[_M] * kappa * weight
-                ax += f * wsx
-                ay += f * wsy
-                az += f * wsz
-                if heat:
-                    du += f * (wsx * wx + wsy * wy + wsz * wz)
+            ax += fx
+            ay += fy
+            az += fz
+            du += dq
         acc[a, 0] = ax
         acc[a, 1] = ay
         acc[a, 2] = az
@@ -228,9 +182,89 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
         tmin[a] = tm
 
 
+@njit(inline="always")
+def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c_const, projected, recon, limit,
+              dt_implicit, heat, kernel_side, gas_slope=0):
+    """Drag acceleration of particle ``a`` (row of ``table``) from ``j`` (row of ``otable``), the heating
+    it causes (if ``heat``) and the pair stopping time: ``(ax, ay, az, du, t_pair)``, with
+    ``t_pair = inf`` for a pair that does not interact. Evaluated from either side it gives equal and
+    opposite momentum changes (module docstring); arguments as :func:`drag_pass`."""
+    pa = table[a]
+    pj = otable[j]
+    dx = minimum_image(pj[_X] - pa[_X], length[0], periodic[0])
+    dy = minimum_image(pj[_Y] - pa[_Y], length[1], periodic[1])
+    dz = minimum_image(pj[_Z] - pa[_Z], length[2], periodic[2])
+    r2 = dx * dx + dy * dy + dz * dz
+    if r2 == 0.0:
+        return 0.0, 0.0, 0.0, 0.0, math.inf  # coincident particles: D = 0 and no direction
+    r = math.sqrt(r2)
+    rinv = 1.0 / r
+    rx, ry, rz = dx * rinv, dy * rinv, dz * rinv
+    qa = r * pa[_HINV]
+    qj = r * pj[_HINV]
+    fa = kernel_shape(shape, qa)[0]
+    fj = kernel_shape(shape, qj)[0]
+    if kernel_side == KERNEL_OWN:
+        fj = 0.0
+    elif kernel_side == KERNEL_OTHER:
+        fa = 0.0
+    if fa == 0.0 and fj == 0.0:
+        return 0.0, 0.0, 0.0, 0.0, math.inf
+    half = 0.5 if kernel_side == KERNEL_AVERAGE else 1.0
+    rho_sum = pa[_RHO] + pj[_RHO]
+    kappa = pa[_K] * pj[_K] + c_const / rho_sum
+    tpair = 1.0 / (rho_sum * kappa)
+    wx = pj[_VX] - pa[_VX]
+    wy = pj[_VY] - pa[_VY]
+    wz = pj[_VZ] - pa[_VZ]
+    du = 0.0
+    if projected:
+        weight = float(ndim) * half * (qa * qa * fa * pa[_WN] + qj * qj * fj * pj[_WN])
+        w = wx * rx + wy * ry + wz * rz
+        ws = w
+        if recon:
+            sa = r * _project(grad, a, rx, ry, rz)
+            sj = r * _project(ograd, j, rx, ry, rz)
+            if gas_slope == 1:
+                ws = w - sa
+            elif gas_slope == 2:
+                ws = w - sj
+            else:
+                ws = w - (mc_limiter(sa, sj) if limit else 0.5 * (sa + sj))
+        if dt_implicit > 0.0:
+            df = (pj[_FX] - pa[_FX]) * rx + (pj[_FY] - pa[_FY]) * ry + (pj[_FZ] - pa[_FZ]) * rz
+            ph = _phi(dt_implicit / tpair)
+            ws = ws * ph + df * tpair * (1.0 - ph)
+        f = pj[_M] * kappa * ws * weight
+        if heat:
+            du = f * w
+        return f * rx, f * ry, f * rz, du, tpair
+    weight = half * (fa * pa[_WN] + fj * pj[_WN])
+    wsx, wsy, wsz = wx, wy, wz
+    if recon:
+        wsx -= _component_slope(grad, ograd, a, j, 0, r, rx, ry, rz, limit, gas_slope)
+        wsy -= _component_slope(grad, ograd, a, j, 1, r, rx, ry, rz, limit, gas_slope)
+        wsz -= _component_slope(grad, ograd, a, j, 2, r, rx, ry, rz, limit, gas_slope)
+    if dt_implicit > 0.0:
+        ph = _phi(dt_implicit / tpair)
+        c2 = tpair * (1.0 - ph)
+        wsx = wsx * ph + (pj[_FX] - pa[_FX]) * c2
+        wsy = wsy * ph + (pj[_FY] - pa[_FY]) * c2
+        wsz = wsz * ph + (pj[_FZ] - pa[_FZ]) * c2
+    f = pj[_M] * kappa * weight
+    if heat:
+        du = f * (wsx * wx + wsy * wy + wsz * wz)
+    return f * wsx, f * wsy, f * wsz, du, tpair
+
+
 @njit(cache=True)
-def _component_slope(grad, ograd, a, j, k, r, rx, ry, rz, limit):
-    """Limited (or averaged) change of velocity component ``k`` across the pair (odd in :math:`\\hat{\\mathbf r}`)."""
+def _component_slope(grad, ograd, a, j, k, r, rx, ry, rz, limit, gas_slope=0):
+    """Limited (or averaged) change of velocity component ``k`` across the pair (odd in :math:`\\hat{\\mathbf r}`);
+    with ``gas_slope`` the whole change along the gas particle's gradient (:func:`drag_pass`)."""
     sa = r * (rx * grad[a, 3 * k] + ry * grad[a, 3 * k + 1] + rz * grad[a, 3 * k + 2])
     sj = r * (rx * ograd[j, 3 * k] + ry * ograd[j, 3 * k + 1] + rz * ograd[j, 3 * k + 2])
+    if gas_slope == 1:
+        return sa
+    if gas_slope == 2:
+        return sj
     return mc_limiter(sa, sj) if limit else 0.5 * (sa + sj)

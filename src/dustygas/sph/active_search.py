@@ -1,0 +1,263 @@
+"""Tree upkeep, neighbour search and scheduling of the active particles of a block sub-step.
+
+Used by :mod:`~dustygas.sph.timesteps` (hierarchical individual time steps). The k-d tree of
+:mod:`~dustygas.sph.kdtree` is built now and then and *refitted* in between (:func:`refit_tree`:
+the node boxes and largest smoothing lengths are recomputed for the current positions, the
+particle order is kept), so a sub-step with few active particles costs :math:`O(N)` cheap
+operations plus work proportional to the active particles:
+
+* :func:`schedule` -- the particles whose step (or external-force step) ends at this tick, in
+  tree order, grouped by leaf;
+* :func:`active_search` -- their neighbour rows among all particles, split by species;
+* :func:`drift_and_accrete` -- the drift of every particle and the accretion by the star.
+
+Every loop writes only its own rows or runs serially: deterministic for any thread count.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from .neighbours import minimum_image
+
+__all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
+
+#: type of an accreted particle waiting to be removed at the end of the block (never active, no neighbour)
+DEAD = 99
+
+
+# --------------------------------------------------------------------------- tree
+
+
+@njit(parallel=True, cache=True)
+def refit_tree(pos, h, order, start, end, child, leaves, lo, hi, hmax):
+    """Recompute every node's bounding box and largest ``h`` bottom-up (children are stored after
+    their parents, :func:`dustygas.sph.kdtree.build_tree`); the particle order is kept."""
+    for il in prange(leaves.shape[0]):
+        node = leaves[il]
+        x0 = y0 = z0 = np.inf
+        x1 = y1 = z1 = -np.inf
+        hm = 0.0
+        for k in range(start[node], end[node]):
+            i = order[k]
+            x0 = min(x0, pos[i, 0])
+            x1 = max(x1, pos[i, 0])
+            y0 = min(y0, pos[i, 1])
+            y1 = max(y1, pos[i, 1])
+            z0 = min(z0, pos[i, 2])
+            z1 = max(z1, pos[i, 2])
+            hm = max(hm, h[i])
+        lo[node, 0], lo[node, 1], lo[node, 2] = x0, y0, z0
+        hi[node, 0], hi[node, 1], hi[node, 2] = x1, y1, z1
+        hmax[node] = hm
+    for node in range(start.shape[0] - 1, -1, -1):
+        c = child[node]
+        if c < 0:
+            continue
+        for d in range(3):
+            lo[node, d] = min(lo[c, d], lo[c + 1, d])
+            hi[node, d] = max(hi[c, d], hi[c + 1, d])
+        hmax[node] = max(hmax[c], hmax[c + 1])
+
+
+@njit(cache=True)
+def leaf_of_particles(order, start, end, child, n):
+    """The leaf holding each particle, and the list of leaves."""
+    leaf = np.empty(n, np.int64)
+    nleaves = 0
+    for node in range(start.shape[0]):
+        if child[node] < 0:
+            nleaves += 1
+            for k in range(start[node], end[node]):
+                leaf[order[k]] = node
+    leaves = np.empty(nleaves, np.int64)
+    j = 0
+    for node in range(start.shape[0]):
+        if child[node] < 0:
+            leaves[j] = node
+            j += 1
+    return leaf, leaves
+
+
+@njit(inline="always")
+def _gap2(qlo, qhi, lo, hi, node, length, periodic):
+    """Squared distance between the query box and a node's box (minimum image where periodic)."""
+    g2 = 0.0
+    for d in range(3):
+        ca = 0.5 * (qlo[d] + qhi[d])
+        cb = 0.5 * (lo[node, d] + hi[node, d])
+        sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
+        gap = sep - 0.5 * (qhi[d] - qlo[d]) - 0.5 * (hi[node, d] - lo[node, d])
+        if gap > 0.0:
+            g2 += gap * gap
+    return g2
+
+
+@njit(cache=True)
+def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out):
+    """Leaves within reach of the query box (written to ``out`` while there is room); returns the
+    number of particles they hold and the number of leaves."""
+    stack = np.empty(128, np.int64)
+    stack[0] = 0
+    top = 1
+    total = 0
+    nl = 0
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        reach = max(qh, hmax[node])
+        if _gap2(qlo, qhi, lo, hi, node, length, periodic) >= r2 * reach * reach:
+            continue
+        c = child[node]
+        if c >= 0:
+            stack[top] = c
+            stack[top + 1] = c + 1
+            top += 2
+            continue
+        if nl < out.shape[0]:
+            out[nl] = node
+        nl += 1
+        total += end[node] - start[node]
+    return total, nl
+
+
+@njit(parallel=True, cache=True)
+def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, child, lo, hi, hmax, radius,
+                  length, periodic, same_start, same_room, same_index, same_count, cross_start, cross_room,
+                  cross_index, cross_count):
+    """Neighbour rows of the active particles ``act`` among all (living) particles.
+
+    ``group`` delimits runs of ``act`` that share a tree leaf (``act[group[g]:group[g+1]]``); each run
+    walks the tree once with the bounding box of its particles and gathers the candidates into
+    contiguous arrays. A particle ``b`` enters the row of slot ``i`` (particle ``a = act[i]``) when
+    :math:`r_{ab} < R\\max(h^q_i, h_b)` (``h_query`` per slot, ``h_src`` per particle): into the
+    same-species row ``same_index[same_start[i]:][:same_count[i]]``, or the other-species row
+    ``cross_*``. A row has room for ``*_room[i]`` entries; the counts are the true numbers even when
+    they exceed it (the caller then searches those slots again with more room).
+    """
+    r2 = radius * radius
+    wrap = periodic[0] or periodic[1] or periodic[2]
+    for g in prange(group.shape[0] - 1):
+        s0, s1 = group[g], group[g + 1]
+        qlo = np.empty(3)
+        qhi = np.empty(3)
+        for d in range(3):
+            qlo[d] = np.inf
+            qhi[d] = -np.inf
+        qh = 0.0
+        for i in range(s0, s1):
+            a = act[i]
+            for d in range(3):
+                qlo[d] = min(qlo[d], pos[a, d])
+                qhi[d] = max(qhi[d], pos[a, d])
+            qh = max(qh, h_query[i])
+        nodes = np.empty(64, np.int64)
+        m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
+        if nl > nodes.shape[0]:
+            nodes = np.empty(nl, np.int64)
+            _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
+        px = np.empty(m)
+        py = np.empty(m)
+        pz = np.empty(m)
+        ph2 = np.empty(m)
+        pid = np.empty(m, np.int64)
+        pt = np.empty(m, np.int64)
+        d2 = np.empty(m)
+        j = 0
+        for t in range(nl):
+            node = nodes[t]
+            for k in range(start[node], end[node]):
+                b = order[k]
+                px[j] = pos[b, 0]
+                py[j] = pos[b, 1]
+                pz[j] = pos[b, 2]
+                ph2[j] = h_src[b] * h_src[b]
+                pid[j] = b
+                pt[j] = ptype[b]
+                j += 1
+        for i in range(s0, s1):
+            a = act[i]
+            xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+            ha2 = h_query[i] * h_query[i]
+            if wrap:
+                for j in range(m):
+                    dx = minimum_image(xa - px[j], length[0], periodic[0])
+                    dy = minimum_image(ya - py[j], length[1], periodic[1])
+                    dz = minimum_image(za - pz[j], length[2], periodic[2])
+                    d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+            else:
+                for j in range(m):  # vectorised: no branch
+                    dx = xa - px[j]
+                    dy = ya - py[j]
+                    dz = za - pz[j]
+                    d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+            ta = ptype[a]
+            ns = 0
+            nc = 0
+            o_s, room_s = same_start[i], same_room[i]
+            o_c, room_c = cross_start[i], cross_room[i]
+            for j in range(m):
+                if d2[j] < 0.0 and pid[j] != a and pt[j] != DEAD:
+                    if pt[j] == ta:
+                        if ns < room_s:
+                            same_index[o_s + ns] = pid[j]
+                        ns += 1
+                    else:
+                        if nc < room_c:
+                            cross_index[o_c + nc] = pid[j]
+                        nc += 1
+            same_count[i] = ns
+            cross_count[i] = nc
+
+
+@njit(cache=True)
+def schedule(order, level, ext_level, wake, ptype, tick, log2_ticks):
+    """The particles active at ``tick``, in tree order: those whose step ends there (``level``) or that
+    were woken (``act``), and those whose external-force step ends there but not their step
+    (``ext_only``). Dead particles are never active."""
+    n = order.shape[0]
+    act = np.empty(n, np.int64)
+    ext = np.empty(n, np.int64)
+    na = 0
+    ne = 0
+    for k in range(n):
+        a = order[k]
+        if ptype[a] == DEAD:
+            continue
+        if wake[a] or tick % (np.int64(1) << (log2_ticks - level[a])) == 0:
+            act[na] = a
+            na += 1
+        elif tick % (np.int64(1) << (log2_ticks - ext_level[a])) == 0:
+            ext[ne] = a
+            ne += 1
+    return act[:na], ext[:ne]
+
+
+@njit(cache=True)
+def drift_and_accrete(pos, vel, mass, ptype, dt, accretion_radius, accreted):
+    """Drift every particle by ``dt``; particles that come within ``accretion_radius`` of the origin
+    become ``DEAD`` and add their mass, momentum and angular momentum to ``accreted`` (7 numbers).
+    Returns how many were accreted."""
+    r2acc = accretion_radius * accretion_radius
+    count = 0
+    for a in range(pos.shape[0]):
+        if ptype[a] == DEAD:
+            continue
+        x = pos[a, 0] + dt * vel[a, 0]
+        y = pos[a, 1] + dt * vel[a, 1]
+        z = pos[a, 2] + dt * vel[a, 2]
+        pos[a, 0], pos[a, 1], pos[a, 2] = x, y, z
+        if x * x + y * y + z * z < r2acc:
+            m = mass[a]
+            vx, vy, vz = vel[a, 0], vel[a, 1], vel[a, 2]
+            accreted[0] += m
+            accreted[1] += m * vx
+            accreted[2] += m * vy
+            accreted[3] += m * vz
+            accreted[4] += m * (y * vz - z * vy)
+            accreted[5] += m * (z * vx - x * vz)
+            accreted[6] += m * (x * vy - y * vx)
+            ptype[a] = DEAD
+            count += 1
+    return count
