@@ -17,7 +17,7 @@ print(f"linA: growth rate {mode.growth_rate:.7f} Omega, frequency {mode.frequenc
 # growth along theta_k = 30 degrees for tau_s = 1, mu = 0.1 (thesis Figure 4.2)
 k = np.geomspace(0.05, 100, 200)
 th = np.radians(30.0)
-s = np.array([growth_rate(1.0, 0.1, kk * np.sin(th), kk * np.cos(th), Pi=0.05) for kk in k])
+s = np.array([growth_rate(taus=1.0, mu=0.1, kx=kk * np.sin(th), kz=kk * np.cos(th), Pi=0.05) for kk in k])
 print(f"fastest growth {s.max():.4f} Omega at K = {k[np.argmax(s)]:.3f}")
 with house_style():
     fig, ax = new_figure()
