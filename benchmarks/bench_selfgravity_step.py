@@ -10,7 +10,7 @@ would cost). Thread count: numba's and scipy.fft's workers alike (``--threads``)
 
 Usage::
 
-    flock /work/main/benchmarks/.lock python benchmarks/bench_selfgravity_step.py --threads 1
+    flock benchmarks/.lock python benchmarks/bench_selfgravity_step.py --threads 1
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ timings, with the load average printed next to them.
 
 Usage::
 
-    flock /work/main/benchmarks/.lock python benchmarks/bench_strat3d.py \\
+    flock benchmarks/.lock python benchmarks/bench_strat3d.py \\
         --athena /path/to/athena/bin/athena --settled /path/to/runs/si3d
 """
 
