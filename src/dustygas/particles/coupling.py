@@ -11,7 +11,10 @@ integrator (VL2, Stone & Gardiner 2009: a predictor to ``t^n + h/2``, a correcto
 2. with back-reaction, deposit each species' density and momentum (positions ``x^{n+1/2}``,
    velocities ``v^n``);
 3. gas predictor ``U^{n+1/2} = U^n + (h/2)[L(U^n) + S^{n-1/2} + S_terms]``, ``S^{n-1/2}``
-   the drag source of the previous step's corrector (0 at the first step: an O(h²) error once);
+   the drag source of the previous step's corrector; at the first step the drag at ``t^n``,
+   ``S^0 = Σ_s (ρ_s V_s - ρ_s u^n)/T_s`` from the step-2 deposit (without it the first
+   predictor lacks the drag, an O(h²) kick that starts an epicycle of the mixture: the NSH
+   drift then oscillates about its equilibrium with amplitude 1e-5 .. 1e-4);
 4. the local drag problem of every cell (:mod:`dustygas.particles.drag`): the gas velocity
    ``ũ(t)`` each species will see over the step, from ``U^n``, the gas's own acceleration
    ``(U^{n+1/2} - U^n)/(h/2)`` less the drag it received, and the dust deposit; through the
@@ -60,8 +63,8 @@ from .deposit import filter_field, image_values, pull_deposit, sort_images
 from .diagnostics import MODE_FIELDS, gas_mode, particle_mode, species_statistics
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
-from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, kick, occupied_rows, stencil,
-                   trajectory_columns)
+from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, explicit_drag_source, kick,
+                   occupied_rows, shear_frame_forces, stencil, trajectory_columns)
 from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
@@ -196,6 +199,8 @@ class ParticleGridEngine:
                                             0.0 if relative else geom.shear_velocity_jump, boundary_keys)
         # full velocities in a rotating box: the fields the particles gather hold u_y + q Omega x
         self._shear_rate = geom.q * geom.omega if not relative and geom.omega != 0.0 else 0.0
+        #: the particle terms for the velocity relative to the shear, in which the drag is solved
+        self._frame_forces = shear_frame_forces(self.forces, self._shear_rate)
         self._field_kinds = field_ghost_kinds(geom.boundaries, active)
         m = gas.mesh
         self._lay, self._sp, self._off = m.layout, m.spacing, m.offsets
@@ -421,12 +426,17 @@ class ParticleGridEngine:
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
         # 2. the dust deposit of the local drag problem
-        if self.feedback:
-            dust_values(vel, species, mass, n, self._inv_vol, True, self._values, self._cols)
-            self._dep1[...] = 0.0
-            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, 2, 0)
-        # 3. gas predictor
         u_old = gas.stage_input(0)
+        if self.feedback:
+            back = 0.5 * h if self._active[0] else 0.0
+            dust_values(pos, vel, species, mass, n, self._inv_vol, True, self._shear_rate, back, self._values,
+                        self._cols)
+            self._dep1[...] = 0.0
+            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, -1, 0)
+            if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
+                explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._shear_rate, self._dep1, self.nspecies,
+                                     self.species, self._source)
+        # 3. gas predictor
         use_ext = self.feedback or bool(self.gas_terms)
         if use_ext:
             ext = self._ext
@@ -447,13 +457,13 @@ class ParticleGridEngine:
             self._mesh_term.update(self, u_half[(0,) + self.mesh.interior()], t_half)
             self._mesh_field[...] = self._mesh_term.field
         cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
-                          self.nspecies, self.species, self.forces, self._mesh_field, self._shear_rate, self.feedback,
+                          self.nspecies, self.species, self._frame_forces, self._mesh_field, self._shear_rate, self.feedback,
                           self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
         self._fill_and_filter(self._traj, self._traj_tmp, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
-             self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self.forces, self._shear_rate,
+             self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
              h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
@@ -481,7 +491,7 @@ class ParticleGridEngine:
             return self._dep1[..., 0::4].sum(axis=-1)
         p = self.particles
         pos, vel, species, pid, mass = p.buffers()
-        dust_values(vel, species, mass, p.n, self._inv_vol, False, self._values, self._cols)
+        dust_values(pos, vel, species, mass, p.n, self._inv_vol, False, 0.0, 0.0, self._values, self._cols)
         self._rho_p[...] = 0.0
         self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._zero_cols, -1, 0)
         return self._rho_p[..., 0].copy()
@@ -493,7 +503,7 @@ class ParticleGridEngine:
         p = self.particles
         self._prepare(self.t)
         pos, vel, species, pid, mass = p.buffers()
-        dust_values(vel, species, mass, p.n, self._inv_vol, False, self._values, self._cols)
+        dust_values(pos, vel, species, mass, p.n, self._inv_vol, False, 0.0, 0.0, self._values, self._cols)
         self._rho_p[...] = 0.0
         self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._cols, -1, 0)
         rho = np.moveaxis(self._rho_p, -1, 0).copy()

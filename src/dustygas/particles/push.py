@@ -21,10 +21,11 @@ from numba import njit, prange
 
 from .drag import FIXED, MAX_SPECIES, N_COEF, cell_model, relax_with, step_coefficients, stopping_time
 from .interp import axis_stencil
-from .terms import frame_acceleration
+from .terms import ForceTable, frame_acceleration
 
 __all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "drift", "stencil", "dust_values",
-           "cell_trajectories", "kick", "copy_domain", "occupied_rows"]
+           "cell_trajectories", "explicit_drag_source", "kick", "copy_domain", "occupied_rows",
+           "shear_frame_forces"]
 
 #: particle passes run over this many chunks of the particle range (fixed: sums per chunk do
 #: not depend on the thread count)
@@ -70,8 +71,14 @@ def stencil(pos, n, lay, sp, off, order, R, wts) -> None:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def dust_values(vel, species, mass, n, inv_vol, momentum, out, col) -> None:
-    """``out[p] = m/V (, m v/V)`` and ``col[p]`` = its species' first column (4 or 1 per species)."""
+def dust_values(pos, vel, species, mass, n, inv_vol, momentum, shear_rate, back, out, col) -> None:
+    """``out[p] = m/V (, m w/V)`` and ``col[p]`` = its species' first column (4 or 1 per species).
+
+    ``w = (v_x, v_y + shear_rate x, v_z)`` is the velocity relative to the shear (``shear_rate
+    = q Ω`` when full velocities are stored, else 0), with ``x = pos_x - back v_x`` the position
+    at the time of ``v`` (``back``: the drift since then, 0 if x is inactive). It is the same for
+    a particle and its radial images, so the deposit needs no image shift of ``v_y``.
+    """
     nchunk = min(max(n, 1), PARTICLE_CHUNKS)
     width = 4 if momentum else 1
     for c in prange(nchunk):
@@ -80,7 +87,7 @@ def dust_values(vel, species, mass, n, inv_vol, momentum, out, col) -> None:
             out[p, 0] = q
             if momentum:
                 out[p, 1] = q * vel[0, p]
-                out[p, 2] = q * vel[1, p]
+                out[p, 2] = q * (vel[1, p] + shear_rate * (pos[0, p] - back * vel[0, p]))
                 out[p, 3] = q * vel[2, p]
             col[p] = width * species[p]
 
@@ -95,9 +102,13 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
     ``s_drag`` ``(3, nz, ny, nx)``: the drag source the predictor applied with step
     ``pred_dt``; the gas's non-drag acceleration is ``(u_free - u^n)/pred_dt`` with
     ``u_free = (m_half - pred_dt s_drag)/ρ_half``. ``dep`` ``(nz, ny, nx, 4 nsp)``: the dust
-    density and momentum per species (with ``feedback``). ``shear_rate``: ``q Ω`` if the gas
-    stores full velocities (the field holds ``u_y + q Ω x``, periodic across a shearing box),
-    else 0. ``traj`` has ``gt = (gx, gy, gz)`` ghost layers (filled later).
+    density and momentum per species (with ``feedback``; velocities relative to the shear,
+    :func:`dust_values`). ``shear_rate``: ``q Ω`` if the gas stores full velocities, else 0;
+    the local problem is solved in the velocities relative to the shear, ``u_y + q Ω x``
+    (periodic across a shearing box), with ``ft`` the forces of that frame
+    (:func:`shear_frame_forces`): there the drift of a uniform dust through uniform gas
+    (NSH) has constant velocities, A = 0 and B_k = 0. ``traj`` has ``gt = (gx, gy, gz)`` ghost
+    layers (filled later).
     """
     nx, ny = lay.nx, lay.ny
     gx, gy, gz = gas_g
@@ -129,9 +140,10 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                 for c in range(3):
                     u0[c] = u_old[1 + c, kk, jj, ii] / rho0
                     fg[c] = ((u_half[1 + c, kk, jj, ii] - pred_dt * s_drag[c, k, j, i]) / rhoh - u0[c]) / pred_dt
+                u0[1] += shear_rate * x
                 cell = traj[k + tz, j + ty, i + tx]
                 cell[U0] = u0[0]
-                cell[U0 + 1] = u0[1] + shear_rate * x
+                cell[U0 + 1] = u0[1]
                 cell[U0 + 2] = u0[2]
                 if c_rho >= 0:
                     cell[c_rho] = rhoh
@@ -172,11 +184,43 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
+def explicit_drag_source(u_old, gas_g, sp, shear_rate, dep, nsp, sp_tab, out) -> None:
+    """The drag of the dust on the gas at ``t^n``, ``S = Σ_s ρ_s (V_s - u)/T_s`` per domain
+    cell (momentum per volume and time, ``out`` ``(3, nz, ny, nx)``), from the dust deposit
+    ``dep`` ``(nz, ny, nx, 4 nsp)`` (:func:`dust_values`: velocities relative to the shear
+    ``shear_rate``) and the gas state ``u_old`` (ghosts ``gas_g``): the predictor's source at
+    the first step, which has no previous corrector's.
+    """
+    nc, nz, ny, nx = out.shape
+    gx, gy, gz = gas_g
+    for k in prange(nz):
+        for j in range(ny):
+            for i in range(nx):
+                kk, jj, ii = k + gz, j + gy, i + gx
+                rho = u_old[0, kk, jj, ii]
+                shear = shear_rate * (sp.x0 + (i + 0.5) * sp.dx)
+                for c in range(3):
+                    out[c, k, j, i] = 0.0
+                for s in range(nsp):
+                    d = dep[k, j, i, 4 * s]
+                    if d > 0.0:
+                        ts = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, rho)
+                        for c in range(3):
+                            u = u_old[1 + c, kk, jj, ii] / rho + (shear if c == 1 else 0.0)
+                            out[c, k, j, i] += (dep[k, j, i, 4 * s + 1 + c] - d * u) / ts
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
 def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_rho, c_mesh, sp_tab, coef, ft,
          shear_rate, h, inv_vol, active, values, budget, vmax):
     """Gather, velocity update and second half drift of particles ``0 .. n-1`` (module docstring).
 
-    ``pos`` holds ``x^{n+1/2}`` and becomes ``x^{n+1}``; ``vel`` ``v^n`` -> ``v^{n+1}``.
+    ``pos`` holds ``x^{n+1/2}`` and becomes ``x^{n+1}``; ``vel`` ``v^n`` -> ``v^{n+1}``. The
+    update integrates the velocity relative to the shear, ``w_y = v_y + shear_rate x`` (taken
+    at ``x^n`` and ``x^{n+1}``), with the forces ``ft`` of that frame (:func:`shear_frame_forces`)
+    against the trajectory field, which holds the gas's ``u_y + shear_rate x``: a particle
+    drifting radially at a constant ``w`` (NSH) is then a fixed point, where integrating ``v_y``
+    with the gas velocity held at ``x^{n+1/2}`` is not (its ``v_y`` changes linearly in time).
     ``coef`` ``(nsp, N_COEF)``: the step coefficients of the species of fixed stopping time
     (:func:`~dustygas.particles.drag.step_coefficients`). ``values[p]`` receives minus the
     particle's drag impulse per unit volume and time, ``-m (v^{n+1} - v^n - g h)/(V h)`` (the
@@ -225,7 +269,9 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
                                 g[10 + q] += w * f[c_mesh + q]
             x, y, z = pos[0, p], pos[1, p], pos[2, p]
             v0x, v0y, v0z = vel[0, p], vel[1, p], vel[2, p]
-            ux, uy, uz = g[U0], g[U0 + 1] - shear_rate * x, g[U0 + 2]
+            x0 = x - 0.5 * h * v0x if active[0] else x
+            w0y = v0y + shear_rate * x0
+            ux, uy, uz = g[U0], g[U0 + 1], g[U0 + 2]
             if sp_tab.law[s] == FIXED:
                 ts = sp_tab.t_stop[s]
                 cf = coef[s]
@@ -234,18 +280,20 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
                 step_coefficients(ts, w2, h, own)
                 cf = own
             # the held accelerations at x^{n+1/2} and the velocity predicted over half a step
-            ax0, ay0, az0 = frame_acceleration(x, v0x, v0y, ft)
+            ax0, ay0, az0 = frame_acceleration(x, v0x, w0y, ft)
             mgx, mgy, mgz = (g[10], g[11], g[12]) if c_mesh >= 0 else (0.0, 0.0, 0.0)
             hx = relax_with(v0x, cf, 3, ts, ux, g[ACC], ax0 + mgx, 0.0)
-            hy = relax_with(v0y, cf, 3, ts, uy, g[ACC + 1], ay0 + mgy, 0.0)
+            hy = relax_with(w0y, cf, 3, ts, uy, g[ACC + 1], ay0 + mgy, 0.0)
             gx_, gy_, _ = frame_acceleration(x, hx, hy, ft)
             gx_ += mgx
             gy_ += mgy
             gz_ = az0 + mgz
             nvx = relax_with(v0x, cf, 0, ts, ux, g[ACC], gx_, g[6])
-            nvy = relax_with(v0y, cf, 0, ts, uy, g[ACC + 1], gy_, g[7])
+            nwy = relax_with(w0y, cf, 0, ts, uy, g[ACC + 1], gy_, g[7])
+            x1 = x + 0.5 * h * nvx if active[0] else x
+            nvy = nwy - shear_rate * x1
             jx = nvx - v0x - gx_ * h
-            jy = nvy - v0y - gy_ * h
+            jy = nwy - w0y - gy_ * h
             if w2 > 0.0:
                 z0 = z - 0.5 * h * v0z
                 b0 = gz_ + uz / ts
@@ -266,13 +314,12 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             values[p, 2] = q * jz
             m = mass[p]
             bx += m * gx_ * h
-            by += m * gy_ * h
+            by += m * (nvy - v0y - jy)  # the change of the stored v_y that is not drag
             bz += m * ext_z
             vel[0, p] = nvx
             vel[1, p] = nvy
             vel[2, p] = nvz
-            if active[0]:
-                pos[0, p] = x + 0.5 * h * nvx
+            pos[0, p] = x1
             if active[1]:
                 pos[1, p] = y + 0.5 * h * nvy
             if active[2]:
@@ -286,6 +333,19 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
         vmax[c, 0] = mx
         vmax[c, 1] = my
         vmax[c, 2] = mz
+
+
+def shear_frame_forces(ft: ForceTable, shear_rate: float) -> ForceTable:
+    """The particle terms ``ft`` written for the velocity relative to the shear,
+    ``w_y = v_y + s x`` (``s = shear_rate``): ``dw_y/dt = dv_y/dt + s v_x`` and ``v_y = w_y - s x``
+    give ``c_y -> c_y - s`` and ``t_x -> t_x - c_x s`` (the rotating frame of full velocities,
+    ``(2Ω, 2Ω, 2qΩ²)``, becomes that of orbital advection, ``(2Ω, (2 - q)Ω, 0)``; thesis eq. 4.2).
+
+    >>> from dustygas.particles.terms import RotatingFrame, force_table
+    >>> shear_frame_forces(force_table([RotatingFrame(1.0)]), 1.5)[:3]
+    (2.0, 0.5, 0.0)
+    """
+    return ft._replace(coriolis_y=ft.coriolis_y - shear_rate, tidal_x=ft.tidal_x - ft.coriolis_x * shear_rate)
 
 
 def occupied_rows(keys, n: int, nx: int, ny: int, nz: int, margin: int, periodic_z: bool) -> tuple[int, int]:
