@@ -1,14 +1,17 @@
 """Steady drift (NSH, thesis eq. 4.8) and the dusty box (Laibe & Price 2011) of the particle-gas engine.
 
 NSH: uniform gas and particle lattices in the NSH equilibrium of
-:func:`dustygas.physics.nsh_velocities_multi`, ten orbits in a shear-periodic 2D x-z box with
-the full azimuthal velocity stored (particles crossing the radial boundary change v_y by
-q Ω L_x). With τ_s = 0.1 alone the equilibrium is an exact fixed point of the discrete scheme,
-so what is left is round-off accumulated over 12,600 steps: tolerance 2e-12 relative on every
-mean velocity (gas and each species, x and y). With τ_s = 1 particles the redesigned push
-keeps the equilibrium only to second order in the step: a steady offset, reached within one
-orbit, of 3.7e-5 at Courant 0.4 and 9.2e-6 at 0.2 (8², 3 orbits), 9.1e-6 at this test's
-step; tolerance 2e-5. (The former push kept every case to round-off, 3.8e-13.)
+:func:`dustygas.physics.nsh_velocities_multi`, ten orbits (about 12,600 steps) in a
+shear-periodic 2D x-z box of 8², with the full azimuthal velocity stored (particles crossing
+the radial boundary change v_y by q Ω L_x) or under orbital advection with the pressure gradient
+on the particles. The equilibrium is an exact fixed point of the discrete scheme (the drag is
+solved in the velocities relative to the shear, and the first predictor has the drag at t^0),
+so what is left is round-off: measured (largest relative error of the gas's and every species'
+mean v_x, v_y, 2026-12-02) 2.3e-14 (τ_s = 0.1, μ = 1), 2.1e-14 (τ_s = 1, μ = 0.2), 4.8e-14
+(two species), 9.0e-15 (orbital advection, particle pressure frame); tolerances 10× those.
+(Without the first step's drag the mixture starts an epicycle of relative amplitude 1e-5 ..
+1e-4; with v_y integrated in the full velocity, held gas velocity and forces, the drift is off
+by 3e-6 (τ_s = 0.1) .. 4e-5 (two species) after one orbit.)
 
 Dusty box: the relative velocity of uniform gas and dust decays as exp(-t/t_s) with the
 mixture stopping time;
@@ -34,17 +37,12 @@ def run_to_end(eng, tlim):
     return eng
 
 
-# KNOWN REGRESSION (tolerances at about twice what is measured, 2026-12-02): the particle engine
-# before the redesign into terms and pull deposits held the NSH equilibrium to round-off (2e-12);
-# the redesigned one drifts from it by a steady second-order offset -- measured 9.1e-6 (tau_s =
-# 0.1), 3.7e-5 (tau_s = 1), 5.7e-5 (two species), 2.4e-5 (orbital advection, particle frame) over
-# ten orbits. The cause is not found yet; these tolerances must go back to 2e-12 once it is.
 @pytest.mark.parametrize("taus, mu, extra, tol", [
-    ([0.1], [1.0], [], 2e-5),
-    ([1.0], [0.2], [], 8e-5),
-    ([0.1, 1.0], [0.5, 0.5], [], 1.2e-4),
+    ([0.1], [1.0], [], 2e-13),
+    ([1.0], [0.2], [], 2e-13),
+    ([0.1, 1.0], [0.5, 0.5], [], 5e-13),
     ([1.0], [0.2], ["problem.orbital_advection=true", "problem.pressure_frame=particles",
-                    "particles.kernel=cic"], 5e-5),
+                    "particles.kernel=cic"], 1e-13),
 ])
 def test_nsh_drift_holds_for_ten_orbits(taus, mu, extra, tol):
     prob = get_problem("nsh")

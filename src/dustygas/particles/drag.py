@@ -43,7 +43,8 @@ with their weights), and the gas receives minus the drag impulse ``v(h) - v - g 
 particle. Properties: total momentum is conserved to round-off (the gas receives exactly what
 the particles lose); a uniform dusty box relaxes at exactly ``(1 + ε)/t_s`` for any step (one
 species; any number of species with their exact modes); a steady drift (NSH) is a fixed
-point, since its forced equilibrium has ``A = 0`` and ``B_k = 0``; for ``h ≪ t_s`` the gas
+point, since its forced equilibrium has ``A = 0`` and ``B_k = 0`` (in the velocities relative to
+the shear, in which the engine solves it); for ``h ≪ t_s`` the gas
 velocity the particle sees changes at the gas's true rate ``f_g + Σ ε_s (V_s - u)/T_s``, so
 the coupling stays second order. The particle's own deviation from the mean of its species
 relaxes at its own rate ``1/t_s``; only the mean is coupled implicitly to the gas.
