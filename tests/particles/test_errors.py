@@ -55,3 +55,49 @@ def _store(x=0.0):
 def test_engine_refuses_what_it_cannot_do(make, match):
     with pytest.raises(SetupError, match=match):
         make()
+
+
+PLANT_NAN = """
+import sys
+from dustygas.cli import main
+from dustygas.particles.coupling import ParticleGridEngine
+
+step = ParticleGridEngine.advance
+
+
+def advance(self, dt):  # a particle position turns NaN in the second step
+    step(self, dt)
+    if self.cycle == 2:
+        self.particles.pos[0, 5] = float("nan")
+
+
+ParticleGridEngine.advance = advance
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def test_nan_particle_position_stops_the_run_with_exit_3_and_a_crash_dump(tmp_path):
+    """A NaN position would never find its cell (the stencil's search loops forever): the engine
+    checks every particle before it sorts them, and the run loop stops like for a NaN in the gas --
+    one line naming the particle, the field, time and cycle; exit 3; crash.h5 with the state."""
+    import re
+    import subprocess
+    import sys
+
+    import h5py
+
+    from foundation._cli import env
+
+    proc = subprocess.run([sys.executable, "-c", PLANT_NAN, "run", "nsh", "-q", "-o", "out", "--set", "grid.nx=8",
+                           "--set", "grid.nz=8", "--set", "run.tlim=1", "--set", "run.dt_history=0"],
+                          cwd=tmp_path, env=env(), capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 3, proc.stderr
+    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "Traceback" not in proc.stderr, proc.stderr
+    assert re.fullmatch(r"dustygas: simulation stopped: invalid particle state \(particle pid=5, species 0\) "
+                        r"at time=0\.0099\d* cycle=2: x=nan", lines[0]), lines[0]
+    assert "x=nan (state dumped to crash.h5)" in (tmp_path / "out" / "log.txt").read_text()
+    with h5py.File(tmp_path / "out" / "crash.h5") as f:
+        assert "invalid particle state" in f.attrs["error"]
+        x = f["offending/particle_pos"][0]
+        assert x.size == 64 and np.isnan(x).sum() == 1

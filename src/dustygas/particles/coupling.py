@@ -62,7 +62,7 @@ from typing import Any, Sequence
 import numba
 import numpy as np
 
-from ..errors import SetupError, UserError
+from ..errors import SetupError, SimulationError, UserError
 from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
 from ..grid.mesh import cell_average_factor
 from ..physics.drag import epstein_grain_size
@@ -73,7 +73,7 @@ from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, explicit_drag_source, kick,
                    occupied_rows, shear_frame_forces, stencil, trajectory_columns)
-from .store import ParticleStore, sort_by_cell
+from .store import ParticleStore, first_nonfinite, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
 __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_density"]
@@ -371,6 +371,7 @@ class ParticleGridEngine:
             self._allocate(p.capacity)
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
+        self._check_finite()
         sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys, self._order_work,
                      self._ptr, self._cell_start, self._fwork, self._iwork)
         stencil(pos, n, self._lay, self._sp, self._off, self._order, self._R, self._wts)
@@ -385,6 +386,22 @@ class ParticleGridEngine:
         sort_images(m, self._lay, self._reach, pid, self._img_src, self._img_cell, self._img_w, self._img_dvy,
                     self._img_row_start)
         self._images = m
+
+    def _check_finite(self) -> None:
+        """Stop (:class:`~dustygas.errors.SimulationError`, naming the particle and the field) if
+        a particle's position or velocity is not finite."""
+        p = self.particles
+        bad = first_nonfinite(p.pos, p.vel, p.n)
+        if bad < 0:
+            return
+        values = {f"{name}": float(p.pos[a, bad]) for a, name in enumerate("xyz")}
+        values.update({f"v{name}": float(p.vel[a, bad]) for a, name in enumerate("xyz")})
+        fields = [f"{k}={v:.6g}" for k, v in values.items() if not np.isfinite(v)]
+        raise SimulationError(
+            f"invalid particle state (particle pid={int(p.pid[bad])}, species {int(p.species[bad])}) at "
+            f"time={self.t:.6g} cycle={self.cycle}: {', '.join(fields)}",
+            state={"particle_pos": p.pos.copy(), "particle_vel": p.vel.copy(), "particle_pid": p.pid.copy()},
+        )
 
     def _deposit(self, out, g, values, cols, vy_col: int, mass_col: int) -> None:
         """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``."""

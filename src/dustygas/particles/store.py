@@ -30,7 +30,7 @@ from numba import njit, prange
 from ..errors import SetupError
 from .interp import axis_cell
 
-__all__ = ["ParticleStore", "compact", "sort_by_cell"]
+__all__ = ["ParticleStore", "compact", "first_nonfinite", "sort_by_cell"]
 
 
 class ParticleStore:
@@ -162,6 +162,27 @@ def compact(pos, vel, species, pid, mass, n, keep) -> int:
                 mass[m] = mass[p]
             m += 1
     return m
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def first_nonfinite(pos, vel, n) -> int:
+    """Index of the first of particles ``0 .. n-1`` with a non-finite position or velocity, or
+    -1 (the cell search and the stencil assume finite positions: a NaN never finds its cell)."""
+    nchunk = min(max(n, 1), 64)
+    first = np.full(nchunk, -1, dtype=np.int64)
+    for c in prange(nchunk):
+        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+            ok = True
+            for a in range(3):
+                if not (np.isfinite(pos[a, p]) and np.isfinite(vel[a, p])):
+                    ok = False
+            if not ok:
+                first[c] = p
+                break
+    for c in range(nchunk):
+        if first[c] >= 0:
+            return first[c]
+    return -1
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
