@@ -72,6 +72,7 @@ from numba import njit
 from ..physics.drag import epstein_stopping_time_scalar
 
 __all__ = ["FIXED", "EPSTEIN", "DRAG_LAWS", "Species", "stopping_time", "relax", "oscillator_step", "relaxation_rates",
+           "relaxation_modes",
            "cell_model", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
 
 FIXED, EPSTEIN = 0, 1
@@ -79,6 +80,9 @@ FIXED, EPSTEIN = 0, 1
 DRAG_LAWS = {"fixed": FIXED, "epstein": EPSTEIN}
 #: most dust species one run may hold (the per-cell work arrays are this long)
 MAX_SPECIES = 32
+#: a species below this fraction of the gas density in a cell has no drag mode of its own there
+#: (its back-reaction is below round-off; its particles respond to the gas like test particles)
+NEGLIGIBLE = 1e-30
 
 
 class Species(NamedTuple):
@@ -213,52 +217,79 @@ def oscillator_step(z0, v0, ts, w2, h, beta0, beta1):
 
 
 @njit(cache=True, error_model="numpy")
-def _secular(mu, eps, ts, n):
-    """``1 + Σ ε_s/(1 - μ T_s)`` and its derivative."""
+def _pole_distance(t_ref: float, offset: float, t: float) -> float:
+    """``1 - μ T`` for ``μ = 1/T_ref + offset``, written so that it has no cancellation near the
+    pole ``T = T_ref`` (where it is ``-offset T_ref``)."""
+    return (t_ref - t) / t_ref - offset * t
+
+
+@njit(cache=True, error_model="numpy")
+def _secular(offset, t_ref, eps, ts, n):
+    """``1 + Σ ε_s/(1 - μ T_s)`` at ``μ = 1/T_ref + offset`` and its derivative in ``offset``."""
     f = 1.0
     df = 0.0
     for s in range(n):
-        d = 1.0 - mu * ts[s]
+        d = _pole_distance(t_ref, offset, ts[s])
         f += eps[s] / d
         df += eps[s] * ts[s] / (d * d)
     return f, df
 
 
 @njit(cache=True, error_model="numpy")
-def relaxation_rates(eps, ts, n, mu) -> None:
-    """The ``n`` relaxation rates ``μ_k`` of the local drag problem (module docstring) into ``mu``.
+def relaxation_modes(eps, ts, n, mu, offset, ref) -> None:
+    """The ``n`` relaxation rates ``μ_k`` of the local drag problem (module docstring) into ``mu``,
+    each also as ``μ_k = 1/T_{ref_k} + offset_k`` from its nearer pole (``ref`` as float).
 
     ``eps`` (> 0) and ``ts`` (distinct, sorted by decreasing ``ts``, i.e. increasing ``1/T``):
     root ``k`` lies between ``1/T_k`` and ``1/T_{k+1}`` (the last above ``1/T_{n-1}``); the
     secular function increases from -∞ to +∞ (to 1 on the last interval), so a safeguarded
-    Newton iteration on each bracket converges.
+    Newton iteration on each bracket converges. The root is sought as the offset from the pole
+    of the half bracket it lies in: a species of tiny ``ε`` (a cell at the edge of a particle's
+    stencil holds 1e-17 of the gas's density) has a root within ``~ε/T`` of its pole, where
+    ``1 - μ T`` computed from ``μ`` would be pure round-off (or 0, and the mode vector infinite).
     """
     if n == 1:
         mu[0] = (1.0 + eps[0]) / ts[0]
+        offset[0] = eps[0] / ts[0]
+        ref[0] = 0.0
         return
     for k in range(n):
-        lo = 1.0 / ts[k]
-        if k + 1 < n:
-            hi = 1.0 / ts[k + 1]
+        if k + 1 < n:  # between the poles k and k+1: from the nearer one
+            half = 0.5 * (ts[k] - ts[k + 1]) / (ts[k] * ts[k + 1])
+            f, _ = _secular(half, ts[k], eps, ts, n)
+            if f >= 0.0:
+                r, lo, hi = k, 0.0, half
+            else:
+                r, lo, hi = k + 1, -half, 0.0
         else:  # above the last pole: f(mu) <= 1 + sum eps/(1 - mu T) < 0 at mu = (1 + sum eps)/T_min
             tot = 1.0
             for s in range(n):
                 tot += eps[s]
-            hi = tot / ts[n - 1] + lo
+            r, lo, hi = k, 0.0, tot / ts[n - 1]
+        tr = ts[r]
         x = 0.5 * (lo + hi)
-        for _ in range(200):
-            f, df = _secular(x, eps, ts, n)
+        for _ in range(400):
+            f, df = _secular(x, tr, eps, ts, n)
             if abs(f) < 1e-15:
                 break
             if f > 0.0:
                 hi = x
             else:
                 lo = x
-            if hi - lo <= 4e-16 * hi:
+            if hi - lo <= 4e-16 * max(abs(lo), abs(hi)):
                 break
             step = x - f / df
             x = step if lo < step < hi else 0.5 * (lo + hi)
-        mu[k] = x
+        mu[k] = 1.0 / tr + x
+        offset[k] = x
+        ref[k] = r
+
+
+@njit(cache=True, error_model="numpy")
+def relaxation_rates(eps, ts, n, mu) -> None:
+    """The ``n`` relaxation rates ``μ_k`` of the local drag problem into ``mu``
+    (:func:`relaxation_modes`, same arguments)."""
+    relaxation_modes(eps, ts, n, mu, np.empty(n), np.empty(n))
 
 
 @njit(cache=True, error_model="numpy")
@@ -314,7 +345,7 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
     group = work[3]  # group index of each species (float storage)
     for s in range(nsp):
         group[s] = -1.0
-        if rho_s[s] <= 0.0:
+        if rho_s[s] <= NEGLIGIBLE * rho_g:  # no mode of its own: it responds like the absent species
             continue
         found = -1
         for q in range(ng):
@@ -342,23 +373,40 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
     for q in range(ng):
         es[q] = eps[perm[q]]
         ts[q] = tg[perm[q]]
-    relaxation_rates(es, ts, ng, mu)
-    # B_k = (gas part of mode k of the state) - (of the forcing)/mu_k, M-orthogonal projections
+    offset = work[0]  # eps and tg are copied into es, ts: their rows are free
+    ref = work[1]
+    relaxation_modes(es, ts, ng, mu, offset, ref)
+    for s in range(nsp):  # the sorted group of each present species
+        if group[s] >= 0.0:
+            for q in range(ng):
+                if perm[q] == int(group[s]):
+                    group[s] = q
+                    break
+    # B_k = (gas part of mode k of the state) - (of the forcing)/mu_k, M-orthogonal projections;
+    # mode k has gas component 1 and species components 1/d_s, d_s = 1 - mu_k T_s, scaled here by
+    # sigma = min(1, |d_s|) so that no component exceeds 1 (a species of tiny eps near its pole)
     for k in range(ng):
-        norm = rho_g
+        tr = ts[int(ref[k])]
+        sigma = 1.0
         for s in range(nsp):
-            if rho_s[s] > 0.0:
-                e = 1.0 / (1.0 - mu[k] * ts_s[s])
-                norm += rho_s[s] * e * e
+            if group[s] >= 0.0:
+                sigma = min(sigma, abs(_pole_distance(tr, offset[k], ts[int(group[s])])))
+        norm = rho_g * sigma * sigma
         for c in range(3):
-            cs = rho_g * u0[c]
-            fs = rho_g * f_g[c]
+            bk[k, c] = 0.0
+        for c in range(3):
+            cs = rho_g * sigma * u0[c]
+            fs = rho_g * sigma * f_g[c]
             for s in range(nsp):
-                if rho_s[s] > 0.0:
-                    e = 1.0 / (1.0 - mu[k] * ts_s[s])
+                if group[s] >= 0.0:
+                    e = sigma / _pole_distance(tr, offset[k], ts[int(group[s])])
+                    if c == 0:
+                        norm += rho_s[s] * e * e
                     cs += rho_s[s] * e * vel_s[s, c]
                     fs += rho_s[s] * e * acc_s[s, c]
-            bk[k, c] = (cs - fs / mu[k]) / norm
+            bk[k, c] = cs - fs / mu[k]
+        for c in range(3):
+            bk[k, c] *= sigma / norm
     # every species' response (absent species too: a particle at the edge of its stencil)
     for s in range(nsp):
         T = ts_s[s]

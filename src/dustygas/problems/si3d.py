@@ -217,8 +217,4 @@ preset("si3d-thesis", SI3D, "Thesis Fig 4.7 exactly: 256x256x384 cells, 1.8e7 pa
        grid={"nx": 256, "ny": 256, "nz": 384}, problem={"per_cell": 1.8e7 / (256 * 256 * 384)},
        run={"tlim": 40 * ORBIT, "dt_snapshot": ORBIT / 4})
 preset("si3d-bs10b", SI3D, "Seven species, tau_s log-spaced 1e-4 .. 0.1, mass ~ tau_s^0.5, Z = 0.03 (Bai & Stone 2010b).",
-       # KNOWN BUG (2026-12-02): at its default 32 x 32 x 48 this preset's gas turns NaN in the first
-       # cycle (mass_power = 0.5; with mass_power = 0 the same seven species run); the three-cycle
-       # smoke run of the registry test uses 16 x 16 x 24, where it runs, until the cause is found
-       smoke_overrides=("grid.nx=16", "grid.ny=16", "grid.nz=24"),
        problem={"taus": [float(t) for t in np.logspace(-4, -1, 7)], "mass_power": 0.5, "per_cell": 1.0})
