@@ -4,8 +4,9 @@ Uniform gas and uniform lattices of particles, one lattice per species, in a she
 with the global pressure gradient, start in the NSH equilibrium of
 :func:`dustygas.physics.nsh_velocities_multi` (one species: thesis eq. 4.8; N species:
 Tanaka, Himeno & Ida 2005, Bai & Stone 2010c). The equilibrium is an exact steady state of
-the discrete scheme (both drag integrators keep a steady drift, and a drifting lattice
-deposits a uniform density), so the run measures how well the engine holds it: the history
+the discrete scheme (the drag, solved in the velocities relative to the shear, keeps a steady
+drift, and a drifting lattice deposits a uniform density), so the run measures how well the
+engine holds it (to round-off, 1e-14 over ten orbits): the history
 has every species' mean velocity relative to the shear, ``species_<s>_vx``, ``_vy``, and
 the gas's, ``gas_vx``, ``gas_vy``, in units of ``η v_K``.
 
