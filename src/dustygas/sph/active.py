@@ -240,52 +240,60 @@ def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cro
 # --------------------------------------------------------------------------- kicks
 
 
-@njit(parallel=True, cache=True)
-def _reverse_entries(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
-    """Every row entry whose neighbour is inactive: (neighbour, slot, position in the buffer, kind), in slot order."""
-    n = act.shape[0]
-    counts = np.zeros(n + 1, np.int64)
-    for i in prange(n):
-        c = 0
-        if ptype[act[i]] == GAS:
-            for e in range(same_start[i], same_start[i] + same_count[i]):
-                c += slot[same_index[e]] < 0
-        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-            c += slot[cross_index[e]] < 0
-        counts[i + 1] = c
-    offset = np.cumsum(counts)
-    total = offset[n]
-    who = np.empty(total, np.int64)
-    e_slot = np.empty(total, np.int64)
-    e_pos = np.empty(total, np.int64)
-    e_kind = np.empty(total, np.int8)
-    for i in prange(n):
-        f = offset[i]
+@njit(cache=True)
+def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
+    """The inactive particles that appear in active rows (``passive``, ascending), and for each the
+    entries it appears in: CSR ``ptr`` over ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
+    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order (a counting sort,
+    serial: :math:`O(N)` plus the entries)."""
+    n_all = slot.shape[0]
+    fill = np.zeros(n_all, np.int64)  # entries per particle, then the next free position of its run
+    total = 0
+    for i in range(act.shape[0]):
         if ptype[act[i]] == GAS:
             for e in range(same_start[i], same_start[i] + same_count[i]):
                 b = same_index[e]
                 if slot[b] < 0:
-                    who[f], e_slot[f], e_pos[f], e_kind[f] = b, i, e, HYDRO
-                    f += 1
+                    fill[b] += 1
+                    total += 1
         for e in range(cross_start[i], cross_start[i] + cross_count[i]):
             b = cross_index[e]
             if slot[b] < 0:
-                who[f], e_slot[f], e_pos[f], e_kind[f] = b, i, e, DRAG
-                f += 1
-    return who, e_slot, e_pos, e_kind
-
-
-def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
-    """The inactive particles that appear in active rows (``passive``, ascending), and for each the
-    entries it appears in: CSR ``ptr`` over ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
-    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order (a stable sort)."""
-    who, e_slot, e_pos, e_kind = _reverse_entries(act, slot, ptype, same_start, same_index, same_count, cross_start,
-                                                  cross_index, cross_count)
-    order = np.argsort(who, kind="stable")
-    passive, counts = np.unique(who[order], return_counts=True)
-    ptr = np.zeros(passive.size + 1, np.int64)
-    np.cumsum(counts, out=ptr[1:])
-    return passive, ptr, e_slot[order], e_pos[order], e_kind[order]
+                fill[b] += 1
+                total += 1
+    n_passive = 0
+    for b in range(n_all):
+        n_passive += fill[b] > 0
+    passive = np.empty(n_passive, np.int64)
+    ptr = np.zeros(n_passive + 1, np.int64)
+    u = 0
+    run = 0
+    for b in range(n_all):
+        c = fill[b]
+        if c > 0:
+            passive[u] = b
+            fill[b] = run
+            run += c
+            u += 1
+            ptr[u] = run
+    e_slot = np.empty(total, np.int64)
+    e_pos = np.empty(total, np.int64)
+    e_kind = np.empty(total, np.int8)
+    for i in range(act.shape[0]):
+        if ptype[act[i]] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                b = same_index[e]
+                if slot[b] < 0:
+                    f = fill[b]
+                    e_slot[f], e_pos[f], e_kind[f] = i, e, HYDRO
+                    fill[b] = f + 1
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            b = cross_index[e]
+            if slot[b] < 0:
+                f = fill[b]
+                e_slot[f], e_pos[f], e_kind[f] = i, e, DRAG
+                fill[b] = f + 1
+    return passive, ptr, e_slot, e_pos, e_kind
 
 
 @njit(inline="always")

@@ -265,14 +265,15 @@ def schedule(order, level, ext_level, wake, ptype, tick, log2_ticks):
     ext = np.empty(n, np.int64)
     na = 0
     ne = 0
+    one = np.int64(1)
     for k in range(n):
         a = order[k]
         if ptype[a] == DEAD:
             continue
-        if wake[a] or tick % (np.int64(1) << (log2_ticks - level[a])) == 0:
+        if wake[a] or tick & ((one << (log2_ticks - level[a])) - one) == 0:  # tick a multiple of the step
             act[na] = a
             na += 1
-        elif tick % (np.int64(1) << (log2_ticks - ext_level[a])) == 0:
+        elif tick & ((one << (log2_ticks - ext_level[a])) - one) == 0:
             ext[ne] = a
             ne += 1
     return act[:na], ext[:ne]
