@@ -73,7 +73,7 @@ def pack_hydro(rows, pos, vel, mass, h, rho, omega, P, cs, alpha, u, norm, ndim,
 
 @njit(parallel=True, cache=True)
 def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, radius, length, periodic, form, beta,
-                 pair_s, acc, divv, curlv, vsig, grad):
+                 gradients, pair_s, acc, divv, curlv, vsig, grad):
     """Pressure and artificial-viscosity pair forces of the active gas particles (thesis eqs. 3.2-3.3;
     :mod:`dustygas.sph.forces`), with :math:`\\nabla\\cdot v`, :math:`|\\nabla\\times v|` and signal speeds.
 
@@ -83,7 +83,9 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
     used for the time step; the kicks are :func:`kick_active` / :func:`kick_passive`. ``grad`` (per slot,
     row-major :math:`\\partial_j v_k`) receives the SPH velocity gradient
     :math:`-(\\Omega_a\\rho_a)^{-1}\\sum_b m_b(\\mathbf v_a - \\mathbf v_b)\\,\\nabla_a W_{ab}(h_a)`
-    (:func:`dustygas.sph.dust.two_fluid_kernels.velocity_gradient`) from the same pairs.
+    (:func:`dustygas.sph.dust.two_fluid_kernels.velocity_gradient`) from the same pairs, and ``curlv``
+    :math:`|\\nabla\\times v|`, only when ``gradients`` is true (zero otherwise: the drag's
+    reconstruction is their only reader).
     """
     r2max = radius * radius
     for i in prange(act.shape[0]):
@@ -143,6 +145,9 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
             ay -= m_b * s * dy
             az -= m_b * s * dz
             div += m_b * vdotr * dW_a
+            vs = max(vs, signal_speed(cs_a, pb[_CS], vdotr, beta))
+            if not gradients:
+                continue
             w = m_b * dW_a * rinv
             cx += w * (dvy * dz - dvz * dy)
             cy += w * (dvz * dx - dvx * dz)
@@ -156,7 +161,6 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
             g6 += w * dvz * dx
             g7 += w * dvz * dy
             g8 += w * dvz * dz
-            vs = max(vs, signal_speed(cs_a, pb[_CS], vdotr, beta))
         acc[i, 0] = ax
         acc[i, 1] = ay
         acc[i, 2] = az
