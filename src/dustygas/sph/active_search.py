@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .neighbours import minimum_image
+from .pairs import gather_candidates, minimum_image
 
 __all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
 
@@ -216,17 +216,7 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
                 ph2 = np.empty(cap)
                 d2 = np.empty(cap)
                 pid = np.empty(cap, np.int64)
-            j = 0
-            for t in range(nl):
-                node = nodes[t]
-                for k in range(start[node], end[node]):
-                    b = order[k]
-                    px[j] = pos[b, 0]
-                    py[j] = pos[b, 1]
-                    pz[j] = pos[b, 2]
-                    ph2[j] = h_src[b] * h_src[b]
-                    pid[j] = b
-                    j += 1
+            gather_candidates(nodes, nl, start, end, order, pos, h_src, px, py, pz, ph2, pid)
             for i in range(s0, s1):
                 a = act[i]
                 xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
