@@ -184,15 +184,26 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
             if nl > nodes.shape[0]:
                 nodes = np.empty(2 * nl, np.int64)
                 _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
-            if s1 - s0 < GATHER_MIN:
-                for i in range(s0, s1):
-                    a = act[i]
-                    xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-                    ha2 = h_query[i] * h_query[i]
-                    ta = ptype[a]
-                    ns = nc = 0
-                    o_s, room_s = same_start[i], same_room[i]
-                    o_c, room_c = cross_start[i], cross_room[i]
+            gathered = s1 - s0 >= GATHER_MIN
+            if gathered:
+                if m > cap:
+                    cap = 2 * m
+                    px = np.empty(cap)
+                    py = np.empty(cap)
+                    pz = np.empty(cap)
+                    ph2 = np.empty(cap)
+                    d2 = np.empty(cap)
+                    pid = np.empty(cap, np.int64)
+                gather_candidates(nodes, nl, start, end, order, pos, h_src, px, py, pz, ph2, pid)
+            for i in range(s0, s1):
+                a = act[i]
+                xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+                ha2 = h_query[i] * h_query[i]
+                ta = ptype[a]
+                ns = nc = 0
+                o_s, room_s = same_start[i], same_room[i]
+                o_c, room_c = cross_start[i], cross_room[i]
+                if not gathered:  # test the leaves' particles in place
                     for t in range(nl):
                         node = nodes[t]
                         for k in range(start[node], end[node]):
@@ -205,42 +216,24 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
                                     and ptype[b] != DEAD:
                                 ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c,
                                                 room_c, nc)
-                    same_count[i] = ns
-                    cross_count[i] = nc
-                continue
-            if m > cap:
-                cap = 2 * m
-                px = np.empty(cap)
-                py = np.empty(cap)
-                pz = np.empty(cap)
-                ph2 = np.empty(cap)
-                d2 = np.empty(cap)
-                pid = np.empty(cap, np.int64)
-            gather_candidates(nodes, nl, start, end, order, pos, h_src, px, py, pz, ph2, pid)
-            for i in range(s0, s1):
-                a = act[i]
-                xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-                ha2 = h_query[i] * h_query[i]
-                if wrap:
-                    for j in range(m):
-                        dx = minimum_image(xa - px[j], length[0], periodic[0])
-                        dy = minimum_image(ya - py[j], length[1], periodic[1])
-                        dz = minimum_image(za - pz[j], length[2], periodic[2])
-                        d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
                 else:
-                    for j in range(m):  # vectorised: no branch
-                        dx = xa - px[j]
-                        dy = ya - py[j]
-                        dz = za - pz[j]
-                        d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
-                ta = ptype[a]
-                ns = nc = 0
-                o_s, room_s = same_start[i], same_room[i]
-                o_c, room_c = cross_start[i], cross_room[i]
-                for j in range(m):
-                    b = pid[j]
-                    if d2[j] < 0.0 and b != a and ptype[b] != DEAD:
-                        ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c, room_c, nc)
+                    if wrap:
+                        for j in range(m):
+                            dx = minimum_image(xa - px[j], length[0], periodic[0])
+                            dy = minimum_image(ya - py[j], length[1], periodic[1])
+                            dz = minimum_image(za - pz[j], length[2], periodic[2])
+                            d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+                    else:
+                        for j in range(m):  # vectorised: no branch
+                            dx = xa - px[j]
+                            dy = ya - py[j]
+                            dz = za - pz[j]
+                            d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+                    for j in range(m):
+                        b = pid[j]
+                        if d2[j] < 0.0 and b != a and ptype[b] != DEAD:
+                            ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c, room_c,
+                                            nc)
                 same_count[i] = ns
                 cross_count[i] = nc
 
