@@ -113,39 +113,39 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
         vs = cs_a
         g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
         for k in range(same_count[i]):
-            b = same_index[o + k]
-            pb = packed[b]
-            dx = xa - pb[_X]
-            dy = ya - pb[_Y]
-            dz = za - pb[_Z]
+            b = same_index[o + k]  # the neighbour's columns read in place (a row view per pair costs ~15 %)
+            dx = xa - packed[b, _X]
+            dy = ya - packed[b, _Y]
+            dz = za - packed[b, _Z]
             if wrap:
                 dx = minimum_image(dx, length[0], periodic[0])
                 dy = minimum_image(dy, length[1], periodic[1])
                 dz = minimum_image(dz, length[2], periodic[2])
             r2 = dx * dx + dy * dy + dz * dz
-            hinv_b = pb[_HINV]
+            hinv_b = packed[b, _HINV]
             if r2 * hinv_a * hinv_a >= r2max and r2 * hinv_b * hinv_b >= r2max:
                 pair_s[o + k] = 0.0
                 continue
             r = math.sqrt(r2)
             rinv = 1.0 / r
             dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
-            dW_b = pb[_GRADNORM] * kernel_dshape(shape, r * hinv_b)
-            dvx = vxa - pb[_VX]
-            dvy = vya - pb[_VY]
-            dvz = vza - pb[_VZ]
+            dW_b = packed[b, _GRADNORM] * kernel_dshape(shape, r * hinv_b)
+            dvx = vxa - packed[b, _VX]
+            dvy = vya - packed[b, _VY]
+            dvz = vza - packed[b, _VZ]
             vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
-            s, _ = pressure_pair(form, pa[_FORM], pb[_FORM], dW_a, dW_b, pa[_P], pb[_P], pa[_RHOINV], pb[_RHOINV],
-                                 vdotr)
-            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, pb[_ALPHA], pb[_CS], beta, ombar_a, pb[_OMBAR])
+            s, _ = pressure_pair(form, pa[_FORM], packed[b, _FORM], dW_a, dW_b, pa[_P], packed[b, _P], pa[_RHOINV],
+                                 packed[b, _RHOINV], vdotr)
+            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
+                                  packed[b, _OMBAR])
             s = (s + (qa * dW_a + qb * dW_b)) * rinv
             pair_s[o + k] = s
-            m_b = pb[_M]
+            m_b = packed[b, _M]
             ax -= m_b * s * dx
             ay -= m_b * s * dy
             az -= m_b * s * dz
             div += m_b * vdotr * dW_a
-            vs = max(vs, signal_speed(cs_a, pb[_CS], vdotr, beta))
+            vs = max(vs, signal_speed(cs_a, packed[b, _CS], vdotr, beta))
             if not gradients:
                 continue
             w = m_b * dW_a * rinv
