@@ -95,10 +95,9 @@ def _gap2(qlo, qhi, lo, hi, node, length, periodic):
 
 
 @njit(cache=True)
-def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out):
+def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out, stack):
     """Leaves within reach of the query box (written to ``out`` while there is room); returns the
-    number of particles they hold and the number of leaves."""
-    stack = np.empty(128, np.int64)
+    number of particles they hold and the number of leaves. ``stack``: scratch for 128 nodes."""
     stack[0] = 0
     top = 1
     total = 0
@@ -165,6 +164,7 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
         qlo = np.empty(3)
         qhi = np.empty(3)
         nodes = np.empty(64, np.int64)
+        stack = np.empty(128, np.int64)
         cap = 0
         px = py = pz = ph2 = d2 = np.empty(0)
         pid = np.empty(0, np.int64)
@@ -180,10 +180,10 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
                     qlo[d] = min(qlo[d], pos[a, d])
                     qhi[d] = max(qhi[d], pos[a, d])
                 qh = max(qh, h_query[i])
-            m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
+            m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
             if nl > nodes.shape[0]:
                 nodes = np.empty(2 * nl, np.int64)
-                _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
+                _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
             gathered = s1 - s0 >= GATHER_MIN
             if gathered:
                 if m > cap:
