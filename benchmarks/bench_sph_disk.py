@@ -101,7 +101,8 @@ def main() -> None:
             prate = ph["updates"] / ph["cpu"]
             print(f"Phantom, {threads} thread(s): {ph['updates']:,} particle-updates in {ph['cpu']:.2f} s CPU over "
                   f"{ph['steps']} steps ({ph['wall']:.2f} s wall incl. start-up): {prate:,.0f}/s")
-            print(f"  dustygas / Phantom per thread: {rate / prate:.2f} (target >= {TARGET_VS_PHANTOM})")
+            print(f"  dustygas / Phantom per thread: {rate / prate:.2f} (target >= {TARGET_VS_PHANTOM}); to the same "
+                  f"simulated time ({args.blocks} blocks): {ph['cpu'] / a['cpu']:.2f}x less CPU time")
     print(f"load average (1 min) after: {os.getloadavg()[0]:.2f}")
 
 

@@ -73,7 +73,7 @@ def pack_hydro(rows, pos, vel, mass, h, rho, omega, P, cs, alpha, u, norm, ndim,
 
 @njit(parallel=True, cache=True)
 def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, radius, length, periodic, form, beta,
-                 pair_s, acc, divv, curlv, vsig, grad):
+                 gradients, pair_s, acc, divv, curlv, vsig, grad):
     """Pressure and artificial-viscosity pair forces of the active gas particles (thesis eqs. 3.2-3.3;
     :mod:`dustygas.sph.forces`), with :math:`\\nabla\\cdot v`, :math:`|\\nabla\\times v|` and signal speeds.
 
@@ -83,7 +83,9 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
     used for the time step; the kicks are :func:`kick_active` / :func:`kick_passive`. ``grad`` (per slot,
     row-major :math:`\\partial_j v_k`) receives the SPH velocity gradient
     :math:`-(\\Omega_a\\rho_a)^{-1}\\sum_b m_b(\\mathbf v_a - \\mathbf v_b)\\,\\nabla_a W_{ab}(h_a)`
-    (:func:`dustygas.sph.dust.two_fluid_kernels.velocity_gradient`) from the same pairs.
+    (:func:`dustygas.sph.dust.two_fluid_kernels.velocity_gradient`) from the same pairs, and ``curlv``
+    :math:`|\\nabla\\times v|`, only when ``gradients`` is true (zero otherwise: the drag's
+    reconstruction is their only reader).
     """
     r2max = radius * radius
     for i in prange(act.shape[0]):
@@ -111,38 +113,41 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
         vs = cs_a
         g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
         for k in range(same_count[i]):
-            b = same_index[o + k]
-            pb = packed[b]
-            dx = xa - pb[_X]
-            dy = ya - pb[_Y]
-            dz = za - pb[_Z]
+            b = same_index[o + k]  # the neighbour's columns read in place (a row view per pair costs ~15 %)
+            dx = xa - packed[b, _X]
+            dy = ya - packed[b, _Y]
+            dz = za - packed[b, _Z]
             if wrap:
                 dx = minimum_image(dx, length[0], periodic[0])
                 dy = minimum_image(dy, length[1], periodic[1])
                 dz = minimum_image(dz, length[2], periodic[2])
             r2 = dx * dx + dy * dy + dz * dz
-            hinv_b = pb[_HINV]
+            hinv_b = packed[b, _HINV]
             if r2 * hinv_a * hinv_a >= r2max and r2 * hinv_b * hinv_b >= r2max:
                 pair_s[o + k] = 0.0
                 continue
             r = math.sqrt(r2)
             rinv = 1.0 / r
             dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
-            dW_b = pb[_GRADNORM] * kernel_dshape(shape, r * hinv_b)
-            dvx = vxa - pb[_VX]
-            dvy = vya - pb[_VY]
-            dvz = vza - pb[_VZ]
+            dW_b = packed[b, _GRADNORM] * kernel_dshape(shape, r * hinv_b)
+            dvx = vxa - packed[b, _VX]
+            dvy = vya - packed[b, _VY]
+            dvz = vza - packed[b, _VZ]
             vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
-            s, _ = pressure_pair(form, pa[_FORM], pb[_FORM], dW_a, dW_b, pa[_P], pb[_P], pa[_RHOINV], pb[_RHOINV],
-                                 vdotr)
-            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, pb[_ALPHA], pb[_CS], beta, ombar_a, pb[_OMBAR])
+            s, _ = pressure_pair(form, pa[_FORM], packed[b, _FORM], dW_a, dW_b, pa[_P], packed[b, _P], pa[_RHOINV],
+                                 packed[b, _RHOINV], vdotr)
+            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
+                                  packed[b, _OMBAR])
             s = (s + (qa * dW_a + qb * dW_b)) * rinv
             pair_s[o + k] = s
-            m_b = pb[_M]
+            m_b = packed[b, _M]
             ax -= m_b * s * dx
             ay -= m_b * s * dy
             az -= m_b * s * dz
             div += m_b * vdotr * dW_a
+            vs = max(vs, signal_speed(cs_a, packed[b, _CS], vdotr, beta))
+            if not gradients:
+                continue
             w = m_b * dW_a * rinv
             cx += w * (dvy * dz - dvz * dy)
             cy += w * (dvz * dx - dvx * dz)
@@ -156,7 +161,6 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
             g6 += w * dvz * dx
             g7 += w * dvz * dy
             g8 += w * dvz * dz
-            vs = max(vs, signal_speed(cs_a, pb[_CS], vdotr, beta))
         acc[i, 0] = ax
         acc[i, 1] = ay
         acc[i, 2] = az
@@ -240,52 +244,60 @@ def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cro
 # --------------------------------------------------------------------------- kicks
 
 
-@njit(parallel=True, cache=True)
-def _reverse_entries(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
-    """Every row entry whose neighbour is inactive: (neighbour, slot, position in the buffer, kind), in slot order."""
-    n = act.shape[0]
-    counts = np.zeros(n + 1, np.int64)
-    for i in prange(n):
-        c = 0
-        if ptype[act[i]] == GAS:
-            for e in range(same_start[i], same_start[i] + same_count[i]):
-                c += slot[same_index[e]] < 0
-        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-            c += slot[cross_index[e]] < 0
-        counts[i + 1] = c
-    offset = np.cumsum(counts)
-    total = offset[n]
-    who = np.empty(total, np.int64)
-    e_slot = np.empty(total, np.int64)
-    e_pos = np.empty(total, np.int64)
-    e_kind = np.empty(total, np.int8)
-    for i in prange(n):
-        f = offset[i]
+@njit(cache=True)
+def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
+    """The inactive particles that appear in active rows (``passive``, ascending), and for each the
+    entries it appears in: CSR ``ptr`` over ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
+    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order (a counting sort,
+    serial: :math:`O(N)` plus the entries)."""
+    n_all = slot.shape[0]
+    fill = np.zeros(n_all, np.int64)  # entries per particle, then the next free position of its run
+    total = 0
+    for i in range(act.shape[0]):
         if ptype[act[i]] == GAS:
             for e in range(same_start[i], same_start[i] + same_count[i]):
                 b = same_index[e]
                 if slot[b] < 0:
-                    who[f], e_slot[f], e_pos[f], e_kind[f] = b, i, e, HYDRO
-                    f += 1
+                    fill[b] += 1
+                    total += 1
         for e in range(cross_start[i], cross_start[i] + cross_count[i]):
             b = cross_index[e]
             if slot[b] < 0:
-                who[f], e_slot[f], e_pos[f], e_kind[f] = b, i, e, DRAG
-                f += 1
-    return who, e_slot, e_pos, e_kind
-
-
-def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_start, cross_index, cross_count):
-    """The inactive particles that appear in active rows (``passive``, ascending), and for each the
-    entries it appears in: CSR ``ptr`` over ``(e_slot, e_pos, e_kind)`` (slot of the active particle,
-    position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order (a stable sort)."""
-    who, e_slot, e_pos, e_kind = _reverse_entries(act, slot, ptype, same_start, same_index, same_count, cross_start,
-                                                  cross_index, cross_count)
-    order = np.argsort(who, kind="stable")
-    passive, counts = np.unique(who[order], return_counts=True)
-    ptr = np.zeros(passive.size + 1, np.int64)
-    np.cumsum(counts, out=ptr[1:])
-    return passive, ptr, e_slot[order], e_pos[order], e_kind[order]
+                fill[b] += 1
+                total += 1
+    n_passive = 0
+    for b in range(n_all):
+        n_passive += fill[b] > 0
+    passive = np.empty(n_passive, np.int64)
+    ptr = np.zeros(n_passive + 1, np.int64)
+    u = 0
+    run = 0
+    for b in range(n_all):
+        c = fill[b]
+        if c > 0:
+            passive[u] = b
+            fill[b] = run
+            run += c
+            u += 1
+            ptr[u] = run
+    e_slot = np.empty(total, np.int64)
+    e_pos = np.empty(total, np.int64)
+    e_kind = np.empty(total, np.int8)
+    for i in range(act.shape[0]):
+        if ptype[act[i]] == GAS:
+            for e in range(same_start[i], same_start[i] + same_count[i]):
+                b = same_index[e]
+                if slot[b] < 0:
+                    f = fill[b]
+                    e_slot[f], e_pos[f], e_kind[f] = i, e, HYDRO
+                    fill[b] = f + 1
+        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+            b = cross_index[e]
+            if slot[b] < 0:
+                f = fill[b]
+                e_slot[f], e_pos[f], e_kind[f] = i, e, DRAG
+                fill[b] = f + 1
+    return passive, ptr, e_slot, e_pos, e_kind
 
 
 @njit(inline="always")

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .neighbours import minimum_image
+from .pairs import gather_candidates, minimum_image
 
 __all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
 
@@ -95,10 +95,9 @@ def _gap2(qlo, qhi, lo, hi, node, length, periodic):
 
 
 @njit(cache=True)
-def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out):
+def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out, stack):
     """Leaves within reach of the query box (written to ``out`` while there is room); returns the
-    number of particles they hold and the number of leaves."""
-    stack = np.empty(128, np.int64)
+    number of particles they hold and the number of leaves. ``stack``: scratch for 128 nodes."""
     stack[0] = 0
     top = 1
     total = 0
@@ -122,6 +121,26 @@ def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, o
     return total, nl
 
 
+#: groups of at least this many active particles gather their candidates into contiguous arrays first
+GATHER_MIN = 4
+#: groups per parallel chunk (each chunk allocates its scratch arrays once)
+SEARCH_CHUNK = 32
+
+
+@njit(inline="always")
+def _enter(b, tb, ta, same_index, o_s, room_s, ns, cross_index, o_c, room_c, nc):
+    """Append neighbour ``b`` (of type ``tb``) to the same- or other-species row of a particle of type ``ta``."""
+    if tb == ta:
+        if ns < room_s:
+            same_index[o_s + ns] = b
+        ns += 1
+    else:
+        if nc < room_c:
+            cross_index[o_c + nc] = b
+        nc += 1
+    return ns, nc
+
+
 @njit(parallel=True, cache=True)
 def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, child, lo, hi, hmax, radius,
                   length, periodic, same_start, same_room, same_index, same_count, cross_start, cross_room,
@@ -129,8 +148,10 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
     """Neighbour rows of the active particles ``act`` among all (living) particles.
 
     ``group`` delimits runs of ``act`` that share a tree leaf (``act[group[g]:group[g+1]]``); each run
-    walks the tree once with the bounding box of its particles and gathers the candidates into
-    contiguous arrays. A particle ``b`` enters the row of slot ``i`` (particle ``a = act[i]``) when
+    walks the tree once with the bounding box of its particles; runs of at least ``GATHER_MIN``
+    particles gather the candidates into contiguous arrays first (a vectorised distance test), smaller
+    ones (most of them: the active particles of a sub-step are sparse) test the leaves' particles in
+    place, in the same order. A particle ``b`` enters the row of slot ``i`` (particle ``a = act[i]``) when
     :math:`r_{ab} < R\\max(h^q_i, h_b)` (``h_query`` per slot, ``h_src`` per particle): into the
     same-species row ``same_index[same_start[i]:][:same_count[i]]``, or the other-species row
     ``cross_*``. A row has room for ``*_room[i]`` entries; the counts are the true numbers even when
@@ -138,77 +159,83 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
     """
     r2 = radius * radius
     wrap = periodic[0] or periodic[1] or periodic[2]
-    for g in prange(group.shape[0] - 1):
-        s0, s1 = group[g], group[g + 1]
+    ngroups = group.shape[0] - 1
+    for c in prange((ngroups + SEARCH_CHUNK - 1) // SEARCH_CHUNK):
         qlo = np.empty(3)
         qhi = np.empty(3)
-        for d in range(3):
-            qlo[d] = np.inf
-            qhi[d] = -np.inf
-        qh = 0.0
-        for i in range(s0, s1):
-            a = act[i]
-            for d in range(3):
-                qlo[d] = min(qlo[d], pos[a, d])
-                qhi[d] = max(qhi[d], pos[a, d])
-            qh = max(qh, h_query[i])
         nodes = np.empty(64, np.int64)
-        m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
-        if nl > nodes.shape[0]:
-            nodes = np.empty(nl, np.int64)
-            _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes)
-        px = np.empty(m)
-        py = np.empty(m)
-        pz = np.empty(m)
-        ph2 = np.empty(m)
-        pid = np.empty(m, np.int64)
-        pt = np.empty(m, np.int64)
-        d2 = np.empty(m)
-        j = 0
-        for t in range(nl):
-            node = nodes[t]
-            for k in range(start[node], end[node]):
-                b = order[k]
-                px[j] = pos[b, 0]
-                py[j] = pos[b, 1]
-                pz[j] = pos[b, 2]
-                ph2[j] = h_src[b] * h_src[b]
-                pid[j] = b
-                pt[j] = ptype[b]
-                j += 1
-        for i in range(s0, s1):
-            a = act[i]
-            xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-            ha2 = h_query[i] * h_query[i]
-            if wrap:
-                for j in range(m):
-                    dx = minimum_image(xa - px[j], length[0], periodic[0])
-                    dy = minimum_image(ya - py[j], length[1], periodic[1])
-                    dz = minimum_image(za - pz[j], length[2], periodic[2])
-                    d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
-            else:
-                for j in range(m):  # vectorised: no branch
-                    dx = xa - px[j]
-                    dy = ya - py[j]
-                    dz = za - pz[j]
-                    d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
-            ta = ptype[a]
-            ns = 0
-            nc = 0
-            o_s, room_s = same_start[i], same_room[i]
-            o_c, room_c = cross_start[i], cross_room[i]
-            for j in range(m):
-                if d2[j] < 0.0 and pid[j] != a and pt[j] != DEAD:
-                    if pt[j] == ta:
-                        if ns < room_s:
-                            same_index[o_s + ns] = pid[j]
-                        ns += 1
+        stack = np.empty(128, np.int64)
+        cap = 0
+        px = py = pz = ph2 = d2 = np.empty(0)
+        pid = np.empty(0, np.int64)
+        for g in range(c * SEARCH_CHUNK, min((c + 1) * SEARCH_CHUNK, ngroups)):
+            s0, s1 = group[g], group[g + 1]
+            for d in range(3):
+                qlo[d] = np.inf
+                qhi[d] = -np.inf
+            qh = 0.0
+            for i in range(s0, s1):
+                a = act[i]
+                for d in range(3):
+                    qlo[d] = min(qlo[d], pos[a, d])
+                    qhi[d] = max(qhi[d], pos[a, d])
+                qh = max(qh, h_query[i])
+            m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
+            if nl > nodes.shape[0]:
+                nodes = np.empty(2 * nl, np.int64)
+                _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
+            gathered = s1 - s0 >= GATHER_MIN
+            if gathered:
+                if m > cap:
+                    cap = 2 * m
+                    px = np.empty(cap)
+                    py = np.empty(cap)
+                    pz = np.empty(cap)
+                    ph2 = np.empty(cap)
+                    d2 = np.empty(cap)
+                    pid = np.empty(cap, np.int64)
+                gather_candidates(nodes, nl, start, end, order, pos, h_src, px, py, pz, ph2, pid)
+            for i in range(s0, s1):
+                a = act[i]
+                xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+                ha2 = h_query[i] * h_query[i]
+                ta = ptype[a]
+                ns = nc = 0
+                o_s, room_s = same_start[i], same_room[i]
+                o_c, room_c = cross_start[i], cross_room[i]
+                if not gathered:  # test the leaves' particles in place
+                    for t in range(nl):
+                        node = nodes[t]
+                        for k in range(start[node], end[node]):
+                            b = order[k]
+                            dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
+                            dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
+                            dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
+                            hb = h_src[b]
+                            if dx * dx + dy * dy + dz * dz - r2 * max(ha2, hb * hb) < 0.0 and b != a \
+                                    and ptype[b] != DEAD:
+                                ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c,
+                                                room_c, nc)
+                else:
+                    if wrap:
+                        for j in range(m):
+                            dx = minimum_image(xa - px[j], length[0], periodic[0])
+                            dy = minimum_image(ya - py[j], length[1], periodic[1])
+                            dz = minimum_image(za - pz[j], length[2], periodic[2])
+                            d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
                     else:
-                        if nc < room_c:
-                            cross_index[o_c + nc] = pid[j]
-                        nc += 1
-            same_count[i] = ns
-            cross_count[i] = nc
+                        for j in range(m):  # vectorised: no branch
+                            dx = xa - px[j]
+                            dy = ya - py[j]
+                            dz = za - pz[j]
+                            d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+                    for j in range(m):
+                        b = pid[j]
+                        if d2[j] < 0.0 and b != a and ptype[b] != DEAD:
+                            ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c, room_c,
+                                            nc)
+                same_count[i] = ns
+                cross_count[i] = nc
 
 
 @njit(cache=True)
@@ -221,14 +248,15 @@ def schedule(order, level, ext_level, wake, ptype, tick, log2_ticks):
     ext = np.empty(n, np.int64)
     na = 0
     ne = 0
+    one = np.int64(1)
     for k in range(n):
         a = order[k]
         if ptype[a] == DEAD:
             continue
-        if wake[a] or tick % (np.int64(1) << (log2_ticks - level[a])) == 0:
+        if wake[a] or tick & ((one << (log2_ticks - level[a])) - one) == 0:  # tick a multiple of the step
             act[na] = a
             na += 1
-        elif tick % (np.int64(1) << (log2_ticks - ext_level[a])) == 0:
+        elif tick & ((one << (log2_ticks - ext_level[a])) - one) == 0:
             ext[ne] = a
             ne += 1
     return act[:na], ext[:ne]

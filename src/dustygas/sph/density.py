@@ -72,6 +72,15 @@ def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, po
     st = H_NOT_CONVERGED
     om = 1.0
     it = 0
+    r = np.empty(n_row)  # the distances and masses of the row, gathered once for every iteration
+    m = np.empty(n_row)
+    for k in range(n_row):
+        b = row[k]
+        dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
+        dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
+        dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
+        r[k] = np.sqrt(dx * dx + dy * dy + dz * dz)
+        m[k] = mass[b]
     while it < maxiter:
         it += 1
         hinv = 1.0 / ha
@@ -79,15 +88,10 @@ def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, po
         wsum = ma * f0
         dwsum = ma * ndim * f0
         for k in range(n_row):
-            b = row[k]
-            dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
-            dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
-            dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
-            q = np.sqrt(dx * dx + dy * dy + dz * dz) * hinv
+            q = r[k] * hinv
             f, df = kernel_shape(shape, q)  # zero beyond the support: no branch
-            mb = mass[b]
-            wsum += mb * f
-            dwsum += mb * (ndim * f + q * df)
+            wsum += m[k] * f
+            dwsum += m[k] * (ndim * f + q * df)
         rho_sum = norm * hinv_d * wsum
         drho_dh = -norm * hinv_d * hinv * dwsum
         rho_h = target * hinv_d

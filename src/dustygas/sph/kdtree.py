@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .pairs import candidate_buffers, minimum_image, scan_candidates
+from .pairs import candidate_buffers, gather_candidates, minimum_image, scan_candidates
 
 __all__ = ["build_tree", "tree_search"]
 
@@ -163,17 +163,7 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
             nodes = np.empty(nl, np.int64)
             _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
         px, py, pz, ph2, pid, d2 = candidate_buffers(m)
-        j = 0
-        for t in range(nl):
-            node = nodes[t]
-            for k in range(sstart[node], send[node]):
-                b = sorder[k]
-                px[j] = spos[b, 0]
-                py[j] = spos[b, 1]
-                pz[j] = spos[b, 2]
-                ph2[j] = sh[b] * sh[b]
-                pid[j] = b
-                j += 1
+        gather_candidates(nodes, nl, sstart, send, sorder, spos, sh, px, py, pz, ph2, pid)
         for k in range(qstart[leaf], qend[leaf]):
             scan_candidates(qorder[k], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
                             index, count, overlap)

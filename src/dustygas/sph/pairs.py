@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["minimum_image", "candidate_buffers", "scan_candidates", "store_neighbours"]
+__all__ = ["minimum_image", "candidate_buffers", "gather_candidates", "scan_candidates", "store_neighbours"]
 
 
 @njit(cache=True)
@@ -29,6 +29,23 @@ def minimum_image(dx: float, length: float, periodic: bool) -> float:
 def candidate_buffers(m):
     """Contiguous scratch arrays ``(x, y, z, h^2, index, d2)`` for ``m`` candidate neighbours."""
     return np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m, np.int64), np.empty(m)
+
+
+@njit(inline="always")
+def gather_candidates(nodes, nl, start, end, order, pos, h, px, py, pz, ph2, pid):
+    """Copy the particles of the ``nl`` tree leaves ``nodes`` (positions, :math:`h^2`, indices) into the
+    contiguous candidate arrays, in leaf order."""
+    j = 0
+    for t in range(nl):
+        node = nodes[t]
+        for k in range(start[node], end[node]):
+            b = order[k]
+            px[j] = pos[b, 0]
+            py[j] = pos[b, 1]
+            pz[j] = pos[b, 2]
+            ph2[j] = h[b] * h[b]
+            pid[j] = b
+            j += 1
 
 
 @njit(inline="always")

@@ -163,6 +163,7 @@ class BlockStepEngine(BlockState, BlockPhysics):
         self.kernel = get_kernel(options.kernel, box.ndim)
         self.hfact = options.hfact or self.kernel.default_hfact
         self._box_arrays = box.arrays()
+        self._gradients = drag is not None and drag.reconstruction == "gas"  # the velocity gradients' only reader
         self._check(particles)
         box.wrap(particles.pos)
         self._init_state(particles)
@@ -300,7 +301,7 @@ class BlockStepEngine(BlockState, BlockPhysics):
                        k.norm, k.ndim, FORCE_FORMS[o.force], self._packed)
             divv, curlv, vsig, grad = np.empty(n), np.empty(n), np.empty(n), np.empty((n, 9))
             active_hydro(act, p.ptype, self._packed, same_o, same_i, same_n, k.shape, k.radius, length, per,
-                         FORCE_FORMS[o.force], o.beta, pair_s, acc, divv, curlv, vsig, grad)
+                         FORCE_FORMS[o.force], o.beta, self._gradients, pair_s, acc, divv, curlv, vsig, grad)
             self.divv[act], self.curlv[act], self.vsig[act], self.grad_v[act] = divv, curlv, vsig, grad
         acc_ext = self._external(act)
         self.acc_other[act] = acc + acc_ext
