@@ -73,7 +73,7 @@ from ..physics.drag import epstein_stopping_time_scalar
 
 __all__ = ["FIXED", "EPSTEIN", "DRAG_LAWS", "Species", "stopping_time", "relax", "oscillator_step", "relaxation_rates",
            "relaxation_modes",
-           "cell_model", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
+           "cell_model", "cell_model_decay", "step_decay", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
 
 FIXED, EPSTEIN = 0, 1
 #: name -> code of the stopping-time laws
@@ -302,6 +302,27 @@ def _dexp(a: float, b: float) -> float:
 
 
 @njit(cache=True, error_model="numpy")
+def _dexp_known(a: float, b: float, e_b: float) -> float:
+    """:func:`_dexp` given ``e_b = e^{-b}`` (the same value: ``e^{-b}`` is its factor when ``a >= b``)."""
+    if a < b:
+        return _dexp(a, b)
+    d = a - b
+    if d < 1e-12:
+        return e_b * (1.0 - 0.5 * d)
+    return e_b * (-math.expm1(-d)) / d
+
+
+@njit(cache=True, error_model="numpy")
+def step_decay(h: float, ts, s: int, decay) -> None:
+    """``decay[0, s] = e^{-h/T_s}``, ``decay[1, s] = e^{-h/T_s} - 1`` (``expm1``) for species ``s``
+    of stopping time ``ts[s]``: the factors of :func:`cell_model_decay` (the same for every cell
+    when the stopping time is fixed)."""
+    b = h / ts[s]
+    decay[0, s] = math.exp(-b)
+    decay[1, s] = math.expm1(-b)
+
+
+@njit(cache=True, error_model="numpy")
 def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work, perm, bk) -> None:
     """The local drag problem of one cell (module docstring): writes ``A`` into ``out_a`` (3,) and
     every species' response ``R_s`` into ``out_r`` (nsp, 3).
@@ -311,6 +332,16 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
     (``rho_s = 0``: absent); ``ts_s`` (nsp,): the species' stopping times in this cell;
     scratch: ``work`` (6, nsp) float, ``perm`` (nsp,) int64, ``bk`` (nsp, 3) float.
     """
+    decay = np.empty((2, nsp))
+    for s in range(nsp):
+        step_decay(h, ts_s, s, decay)
+    cell_model_decay(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, out_a, out_r, work, perm, bk)
+
+
+@njit(cache=True, error_model="numpy")
+def cell_model_decay(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, out_a, out_r, work, perm, bk) -> None:
+    """:func:`cell_model` with the species' decay factors ``decay`` (2, nsp) given
+    (:func:`step_decay`): a kernel computes those of fixed stopping times once per step."""
     tot = rho_g
     for c in range(3):
         out_a[c] = rho_g * f_g[c]
@@ -331,7 +362,7 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
         eps = rho_s[0] / rho_g
         mu1 = (1.0 + eps) / T
         b = h / T
-        fac = b * _dexp(mu1 * h, b) + math.expm1(-b)
+        fac = b * _dexp_known(mu1 * h, b, decay[0, 0]) + decay[1, 0]
         for c in range(3):
             # c_k = eps (u0 - V)/(1 + eps); f_k/mu = eps T (f_g - f_s)/(1 + eps)^2
             out_r[0, c] = eps / (1.0 + eps) * ((u0[c] - vel_s[0, c]) - T * (f_g[c] - acc_s[0, c]) / (1.0 + eps)) * fac
@@ -411,8 +442,8 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
     for s in range(nsp):
         T = ts_s[s]
         b = h / T
-        om = -math.expm1(-b)
+        om = -decay[1, s]
         for k in range(ng):
-            fac = b * _dexp(mu[k] * h, b) - om
+            fac = b * _dexp_known(mu[k] * h, b, decay[0, s]) - om
             for c in range(3):
                 out_r[s, c] += bk[k, c] * fac

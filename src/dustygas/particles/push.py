@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .drag import FIXED, MAX_SPECIES, N_COEF, cell_model, relax_with, step_coefficients, stopping_time
+from .drag import FIXED, MAX_SPECIES, N_COEF, cell_model_decay, relax_with, step_coefficients, step_decay, stopping_time
 from .interp import axis_stencil
 from .terms import ForceTable, frame_acceleration
 
@@ -65,9 +65,12 @@ def stencil(pos, n, lay, sp, off, order, R, wts) -> None:
     o = (off.i0, off.j0, off.k0)
     nchunk = min(max(n, 1), PARTICLE_CHUNKS)
     for c in prange(nchunk):
+        w = np.empty(2 * R + 1)  # the weights of one axis (writing through a view of wts costs more)
         for p in range(c * n // nchunk, (c + 1) * n // nchunk):
             for a in range(3):
-                axis_stencil(pos[a, p], x0[a], inv[a], o[a], nn[a], order, R, wts[p, a])
+                axis_stencil(pos[a, p], x0[a], inv[a], o[a], nn[a], order, R, w)
+                for m in range(2 * R + 1):
+                    wts[p, a, m] = w[m]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -128,6 +131,10 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
         work = np.empty((6, MAX_SPECIES))
         perm = np.empty(MAX_SPECIES, dtype=np.int64)
         bk = np.empty((MAX_SPECIES, 3))
+        decay = np.empty((2, MAX_SPECIES))
+        for s in range(nsp):
+            if sp_tab.law[s] == FIXED:
+                step_decay(h, sp_tab.t_stop, s, decay)
         for r in range(chunk * nrows // nchunk, (chunk + 1) * nrows // nchunk):
             k = k_lo + r % nk
             j = r // nk
@@ -141,15 +148,15 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                     u0[c] = u_old[1 + c, kk, jj, ii] / rho0
                     fg[c] = ((u_half[1 + c, kk, jj, ii] - pred_dt * s_drag[c, k, j, i]) / rhoh - u0[c]) / pred_dt
                 u0[1] += shear_rate * x
-                cell = traj[k + tz, j + ty, i + tx]
-                cell[U0] = u0[0]
-                cell[U0 + 1] = u0[1]
-                cell[U0 + 2] = u0[2]
+                tk, tj, ti = k + tz, j + ty, i + tx
+                traj[tk, tj, ti, U0] = u0[0]
+                traj[tk, tj, ti, U0 + 1] = u0[1]
+                traj[tk, tj, ti, U0 + 2] = u0[2]
                 if c_rho >= 0:
-                    cell[c_rho] = rhoh
+                    traj[tk, tj, ti, c_rho] = rhoh
                 if c_mesh >= 0:
                     for c in range(3):
-                        cell[c_mesh + c] = mesh_field[c, k, j, i]
+                        traj[tk, tj, ti, c_mesh + c] = mesh_field[c, k, j, i]
                 dusty = False
                 if feedback:
                     for s in range(nsp):
@@ -157,15 +164,17 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                             dusty = True
                 if not dusty:
                     for c in range(3):
-                        cell[ACC + c] = fg[c]
+                        traj[tk, tj, ti, ACC + c] = fg[c]
                     for s in range(nsp):
                         for c in range(3):
-                            cell[RESPONSE + 3 * s + c] = 0.0
+                            traj[tk, tj, ti, RESPONSE + 3 * s + c] = 0.0
                     continue
                 for s in range(nsp):
                     d = dep[k, j, i, 4 * s]
                     rho_s[s] = d
                     ts_s[s] = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, rhoh)
+                    if sp_tab.law[s] != FIXED:
+                        step_decay(h, ts_s, s, decay)
                     if d > 0.0:
                         vx = dep[k, j, i, 4 * s + 1] / d
                         vy = dep[k, j, i, 4 * s + 2] / d
@@ -175,12 +184,12 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                         acc_s[s, 0] = ax + mesh_field[0, k, j, i]
                         acc_s[s, 1] = ay + mesh_field[1, k, j, i]
                         acc_s[s, 2] = az + mesh_field[2, k, j, i] - ft.gravity_z * z
-                cell_model(rhoh, u0, fg, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work, perm, bk)
+                cell_model_decay(rhoh, u0, fg, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, out_a, out_r, work, perm, bk)
                 for c in range(3):
-                    cell[ACC + c] = out_a[c]
+                    traj[tk, tj, ti, ACC + c] = out_a[c]
                 for s in range(nsp):
                     for c in range(3):
-                        cell[RESPONSE + 3 * s + c] = out_r[s, c]
+                        traj[tk, tj, ti, RESPONSE + 3 * s + c] = out_r[s, c]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -252,21 +261,21 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
                     wyz = wz * wts[p, 1, R + dj]
                     if wyz == 0.0:
                         continue
-                    row = traj[k + tz + dk, j + ty + dj]
+                    kk, jj = k + tz + dk, j + ty + dj
                     for di in range(-rx, rx + 1):
                         w = wyz * wts[p, 0, R + di]
                         if w == 0.0:
                             continue
-                        f = row[i + tx + di]
+                        ii = i + tx + di
                         for q in range(6):
-                            g[q] += w * f[q]
+                            g[q] += w * traj[kk, jj, ii, q]
                         for q in range(3):
-                            g[6 + q] += w * f[rcol + q]
+                            g[6 + q] += w * traj[kk, jj, ii, rcol + q]
                         if c_rho >= 0:
-                            g[9] += w * f[c_rho]
+                            g[9] += w * traj[kk, jj, ii, c_rho]
                         if c_mesh >= 0:
                             for q in range(3):
-                                g[10 + q] += w * f[c_mesh + q]
+                                g[10 + q] += w * traj[kk, jj, ii, c_mesh + q]
             x, y, z = pos[0, p], pos[1, p], pos[2, p]
             v0x, v0y, v0z = vel[0, p], vel[1, p], vel[2, p]
             x0 = x - 0.5 * h * v0x if active[0] else x
