@@ -73,7 +73,8 @@ from ..physics.drag import epstein_stopping_time_scalar
 
 __all__ = ["FIXED", "EPSTEIN", "DRAG_LAWS", "Species", "stopping_time", "relax", "oscillator_step", "relaxation_rates",
            "relaxation_modes",
-           "cell_model", "cell_model_decay", "step_decay", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
+           "cell_model", "cell_model_decay", "step_decay", "one_species_mode",
+           "one_species_response", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
 
 FIXED, EPSTEIN = 0, 1
 #: name -> code of the stopping-time laws
@@ -323,6 +324,24 @@ def step_decay(h: float, ts, s: int, decay) -> None:
 
 
 @njit(cache=True, error_model="numpy")
+def one_species_mode(rho_g: float, rho_1: float, T: float, h: float, e_b: float, em1_b: float) -> tuple[float, float]:
+    """One species in the cell (:func:`cell_model`): ``ε = ρ_1/ρ_g`` and the factor of its one mode
+    (rate ``μ = (1 + ε)/T``, components ``(1, -1/ε)``), ``b (e^{-μh} - e^{-b})/(μh - b) + e^{-b} - 1``
+    with ``b = h/T``; ``e_b``, ``em1_b``: :func:`step_decay`. Scalars only: a kernel inlines it."""
+    eps = rho_1 / rho_g
+    mu1 = (1.0 + eps) / T
+    b = h / T
+    return eps, b * _dexp_known(mu1 * h, b, e_b) + em1_b
+
+
+@njit(cache=True, error_model="numpy")
+def one_species_response(eps: float, fac: float, T: float, du: float, df: float) -> float:
+    """The response ``R`` of one component for one species (:func:`one_species_mode`), from
+    ``du = u0 - V`` and ``df = f_g - f_s``: ``c_k = ε du/(1 + ε)``, ``f_k/μ = ε T df/(1 + ε)²``."""
+    return eps / (1.0 + eps) * (du - T * df / (1.0 + eps)) * fac
+
+
+@njit(cache=True, error_model="numpy")
 def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work, perm, bk) -> None:
     """The local drag problem of one cell (module docstring): writes ``A`` into ``out_a`` (3,) and
     every species' response ``R_s`` into ``out_r`` (nsp, 3).
@@ -357,15 +376,11 @@ def cell_model_decay(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, o
             out_r[s, c] = 0.0
     if tot == rho_g:
         return
-    if nsp == 1:  # one species: mu = (1 + eps)/T, mode components (1, -1/eps)
+    if nsp == 1:
         T = ts_s[0]
-        eps = rho_s[0] / rho_g
-        mu1 = (1.0 + eps) / T
-        b = h / T
-        fac = b * _dexp_known(mu1 * h, b, decay[0, 0]) + decay[1, 0]
+        eps, fac = one_species_mode(rho_g, rho_s[0], T, h, decay[0, 0], decay[1, 0])
         for c in range(3):
-            # c_k = eps (u0 - V)/(1 + eps); f_k/mu = eps T (f_g - f_s)/(1 + eps)^2
-            out_r[0, c] = eps / (1.0 + eps) * ((u0[c] - vel_s[0, c]) - T * (f_g[c] - acc_s[0, c]) / (1.0 + eps)) * fac
+            out_r[0, c] = one_species_response(eps, fac, T, u0[c] - vel_s[0, c], f_g[c] - acc_s[0, c])
         return
     # group the present species by stopping time (equal times share a pole), sorted by
     # decreasing T: group g has eps_g, T_g; member species map to it
