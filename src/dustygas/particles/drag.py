@@ -97,7 +97,7 @@ class Species(NamedTuple):
     cs: float
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def stopping_time(law: int, t_stop: float, grain: float, cs: float, rho: float) -> float:
     """Stopping time of a species with drag ``law`` in gas of density ``rho`` (thesis eq. 2.6)."""
     if law == EPSTEIN:
@@ -114,7 +114,7 @@ def relax(v0: float, ts: float, h: float, u0: float, a: float, g: float, r: floa
     return v0 * e + om * (u0 + g * ts) + a * (h - ts * om) + r
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def relax_with(v0: float, c, base: int, ts: float, u0: float, a: float, g: float, r: float) -> float:
     """:func:`relax` with its step factors ``c[base .. base+2] = (e^{-h/ts}, 1 - e^{-h/ts}, h - ts (1 - e^{-h/ts}))``."""
     return v0 * c[base] + c[base + 1] * (u0 + g * ts) + a * c[base + 2] + r
@@ -293,7 +293,7 @@ def relaxation_rates(eps, ts, n, mu) -> None:
     relaxation_modes(eps, ts, n, mu, np.empty(n), np.empty(n))
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def _dexp(a: float, b: float) -> float:
     """``(e^{-a} - e^{-b})/(b - a)`` without cancellation (``a, b >= 0``)."""
     lo, d = (a, b - a) if a <= b else (b, a - b)
@@ -302,7 +302,7 @@ def _dexp(a: float, b: float) -> float:
     return math.exp(-lo) * (-math.expm1(-d)) / d
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def _dexp_known(a: float, b: float, e_b: float) -> float:
     """:func:`_dexp` given ``e_b = e^{-b}`` (the same value: ``e^{-b}`` is its factor when ``a >= b``)."""
     if a < b:
@@ -323,7 +323,7 @@ def step_decay(h: float, ts, s: int, decay) -> None:
     decay[1, s] = math.expm1(-b)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def one_species_mode(rho_g: float, rho_1: float, T: float, h: float, e_b: float, em1_b: float) -> tuple[float, float]:
     """One species in the cell (:func:`cell_model`): ``ε = ρ_1/ρ_g`` and the factor of its one mode
     (rate ``μ = (1 + ε)/T``, components ``(1, -1/ε)``), ``b (e^{-μh} - e^{-b})/(μh - b) + e^{-b} - 1``
@@ -334,7 +334,7 @@ def one_species_mode(rho_g: float, rho_1: float, T: float, h: float, e_b: float,
     return eps, b * _dexp_known(mu1 * h, b, e_b) + em1_b
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def one_species_response(eps: float, fac: float, T: float, du: float, df: float) -> float:
     """The response ``R`` of one component for one species (:func:`one_species_mode`), from
     ``du = u0 - V`` and ``df = f_g - f_s``: ``c_k = ε du/(1 + ε)``, ``f_k/μ = ε T df/(1 + ε)²``."""
