@@ -36,12 +36,8 @@ shear ``v + q Ω x ŷ`` under orbital advection). The drag (steps 2, 4, 5) is so
 velocities relative to the shear in either case, with the rotating frame of orbital advection
 (:func:`~dustygas.particles.push.shear_frame_forces`): a particle drifting radially through
 the shear keeps a constant ``v_y + q Ω x`` while its stored ``v_y`` changes in time, which a
-step that holds the gas velocity and the forces fixed does not reproduce. The drag (steps 2, 4, 5) is solved in the
-velocities relative to the shear in either case, with the rotating frame of orbital advection
-(:func:`~dustygas.particles.push.shear_frame_forces`): a particle drifting radially through
-the shear keeps a constant ``v_y + q Ω x`` while its stored ``v_y`` changes in time, which a
-step that holds the gas velocity and the forces fixed does not reproduce. The global pressure gradient is either on the
-gas (``shearing_box.eta_vK``) or, opposite, on the particles (a
+step that holds the gas velocity and the forces fixed does not reproduce. The global pressure
+gradient is either on the gas (``shearing_box.eta_vK``) or, opposite, on the particles (a
 :class:`~dustygas.particles.terms.ConstantAcceleration`).
 
 Time step: the gas's Courant step and the particles' ``cfl Δx_d / max|v_d|`` (a particle
