@@ -47,7 +47,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from ..errors import SetupError
 from .remap import shift_column
@@ -370,7 +370,7 @@ def _field_ghost_pair(kind, m, n, g):
     return (g - 1 - m, g + n + m, _source_index(src_kind, True, m, n, g), _source_index(src_kind, False, m, n, g))
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, parallel=True, error_model="numpy")
 def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, k_lo, k_hi) -> None:
     """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
 
@@ -393,14 +393,14 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
         for k in range(k_lo, k_hi):
             f[k, lo] = f[k, slo]
             f[k, hi] = f[k, shi]
-    if gx > 0:
+    if gx > 0:  # rows in parallel: a ghost column copies (or remaps) domain columns of its row only
         shear = kinds[0] == FIELD_SHEAR and ny > 1
-        col = np.empty(ny)
-        out = np.empty(ny)
-        work = np.empty(4 * ny + 19)
-        for m in range(gx):
-            lo, hi, slo, shi = _field_ghost_pair(kinds[0], m, nx, gx)
-            for k in range(k_lo, k_hi):
+        for k in prange(k_lo, k_hi):
+            col = np.empty(ny)
+            out = np.empty(ny)
+            work = np.empty(4 * ny + 19)
+            for m in range(gx):
+                lo, hi, slo, shi = _field_ghost_pair(kinds[0], m, nx, gx)
                 if not shear:
                     for j in range(NY):
                         for v in range(nvar):

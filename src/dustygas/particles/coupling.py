@@ -36,12 +36,8 @@ shear ``v + q Ω x ŷ`` under orbital advection). The drag (steps 2, 4, 5) is so
 velocities relative to the shear in either case, with the rotating frame of orbital advection
 (:func:`~dustygas.particles.push.shear_frame_forces`): a particle drifting radially through
 the shear keeps a constant ``v_y + q Ω x`` while its stored ``v_y`` changes in time, which a
-step that holds the gas velocity and the forces fixed does not reproduce. The drag (steps 2, 4, 5) is solved in the
-velocities relative to the shear in either case, with the rotating frame of orbital advection
-(:func:`~dustygas.particles.push.shear_frame_forces`): a particle drifting radially through
-the shear keeps a constant ``v_y + q Ω x`` while its stored ``v_y`` changes in time, which a
-step that holds the gas velocity and the forces fixed does not reproduce. The global pressure gradient is either on the
-gas (``shearing_box.eta_vK``) or, opposite, on the particles (a
+step that holds the gas velocity and the forces fixed does not reproduce. The global pressure
+gradient is either on the gas (``shearing_box.eta_vK``) or, opposite, on the particles (a
 :class:`~dustygas.particles.terms.ConstantAcceleration`).
 
 Time step: the gas's Courant step and the particles' ``cfl Δx_d / max|v_d|`` (a particle
@@ -230,10 +226,8 @@ class ParticleGridEngine:
         self._coef_dt = -1.0
         gx, gy, gz = self._gt
         self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
-        self._traj_tmp = np.zeros_like(self._traj) if self.smooth else self._traj
         gx2, gy2, gz2 = self._g2
         self._dep2 = np.zeros((nz + 2 * gz2, ny + 2 * gy2, nx + 2 * gx2, 3))
-        self._dep2_tmp = np.zeros_like(self._dep2) if self.smooth else self._dep2
         self._dep1 = np.zeros((nz, ny, nx, 4 * self.nspecies))
         self._rho_p = np.zeros((nz, ny, nx, self.nspecies))
         self._mesh_field = np.zeros((3, nz, ny, nx))
@@ -414,7 +408,7 @@ class ParticleGridEngine:
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
                      self._img_val[:, :nv], img_col)
 
-    def _fill_and_filter(self, field, tmp, g, t: float, rows: tuple[int, int]) -> None:
+    def _fill_and_filter(self, field, g, t: float, rows: tuple[int, int]) -> None:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
         (with the ghost rows beyond them where they reach a z face)."""
         shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
@@ -423,7 +417,7 @@ class ParticleGridEngine:
         k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
         fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
         if self.smooth:
-            filter_field(field, tmp, self._active, k_lo, k_hi)
+            filter_field(field, self._active, k_lo, k_hi)
 
     def _step_coefficients(self, h: float) -> None:
         if h != self._coef_dt:
@@ -484,7 +478,7 @@ class ParticleGridEngine:
         cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
                           self.nspecies, self.species, self._frame_forces, self._mesh_field, self._shear_rate, self.feedback,
                           self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
-        self._fill_and_filter(self._traj, self._traj_tmp, self._gt, t_half, rows)
+        self._fill_and_filter(self._traj, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
@@ -495,7 +489,7 @@ class ParticleGridEngine:
         if self.feedback:
             self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
-            self._fill_and_filter(self._dep2, self._dep2_tmp, self._g2, t_half, rows)
+            self._fill_and_filter(self._dep2, self._g2, t_half, rows)
             copy_domain(self._dep2, np.array(self._g2, dtype=np.int64), self._source, 1.0)
             self._have_source = True
         # 6. gas corrector

@@ -98,14 +98,15 @@ def image_values(m_total, img_src, img_dvy, values, vy_col, mass_col, out) -> No
 
 
 @njit(cache=True, error_model="numpy")
-def _add_record(acc, I, wx, wyz, rx, R, nx, val, col, nv):
+def _add_record(acc, I, wts, r, wyz, rx, R, nx, vals, col, nv):
+    """Record ``r`` (weights ``wts[r]``, values ``vals[r]``) into the row ``acc`` from cell ``I``."""
     for di in range(-rx, rx + 1):
         i = I + di
         if 0 <= i < nx:
-            w = wyz * wx[R + di]
+            w = wyz * wts[r, 0, R + di]
             if w != 0.0:
                 for c in range(nv):
-                    acc[i, col + c] += w * val[c]
+                    acc[i, col + c] += w * vals[r, c]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -150,59 +151,59 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
                     while m < mend and img_cell[m, 0] < 0:  # images beyond the lower x face first
                         wyz = img_w[m, 1, sy] * img_w[m, 2, sz]
                         if wyz != 0.0:
-                            _add_record(acc, img_cell[m, 0], img_w[m, 0], wyz, rx, R, nx, img_val[m], img_col[m], nv)
+                            _add_record(acc, img_cell[m, 0], img_w, m, wyz, rx, R, nx, img_val, img_col[m], nv)
                         m += 1
                     if 0 <= J < ny and 0 <= K < nz:
                         c0 = (K * ny + J) * nx
                         for p in range(cell_start[c0], cell_start[c0 + nx]):
                             wyz = wts[p, 1, sy] * wts[p, 2, sz]
                             if wyz != 0.0:
-                                _add_record(acc, keys[p] - c0, wts[p, 0], wyz, rx, R, nx, values[p], col[p], nv)
+                                _add_record(acc, keys[p] - c0, wts, p, wyz, rx, R, nx, values, col[p], nv)
                     while m < mend:
                         wyz = img_w[m, 1, sy] * img_w[m, 2, sz]
                         if wyz != 0.0:
-                            _add_record(acc, img_cell[m, 0], img_w[m, 0], wyz, rx, R, nx, img_val[m], img_col[m], nv)
+                            _add_record(acc, img_cell[m, 0], img_w, m, wyz, rx, R, nx, img_val, img_col[m], nv)
                         m += 1
 
 
 @njit(cache=True, error_model="numpy")
-def _filter_line(src, dst, axis, a, b, lo, hi):
-    """``dst = F src`` along ``axis`` on the line ``(a, b)`` (the other two indices) for cells ``lo .. hi-1``."""
-    nv = src.shape[3]
-    if axis == 0:
-        s = src[a, b]
-        d = dst[a, b]
-        for m in range(lo, hi):
-            for c in range(nv):
-                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
-    elif axis == 1:
-        s = src[a, :, b]
-        d = dst[a, :, b]
-        for m in range(lo, hi):
-            for c in range(nv):
-                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
-    else:
-        s = src[:, a, b]
-        d = dst[:, a, b]
-        for m in range(lo, hi):
-            for c in range(nv):
-                d[m, c] = 0.0625 * (10.0 * s[m, c] + 4.0 * (s[m - 1, c] + s[m + 1, c]) - (s[m - 2, c] + s[m + 2, c]))
+def _filter_into(row, m2, m1, c0, p1, p2, lo, hi):
+    """``row[q] = F`` of the five rows ``m2, m1, c0, p1, p2`` (offsets -2 .. 2 along the axis) for
+    ``q = lo .. hi-1``: ``(10 c0 + 4 (m1 + p1) - (m2 + p2))/16``."""
+    for q in range(lo, hi):
+        row[q] = 0.0625 * (10.0 * c0[q] + 4.0 * (m1[q] + p1[q]) - (m2[q] + p2[q]))
 
 
 @njit(cache=True, error_model="numpy")
-def _copy_line(src, dst, axis, a, b, lo, hi):
-    if axis == 0:
-        dst[a, b, lo:hi] = src[a, b, lo:hi]
-    elif axis == 1:
-        dst[a, lo:hi, b] = src[a, lo:hi, b]
-    else:
-        dst[lo:hi, a, b] = src[lo:hi, a, b]
+def _filter_x(row, buf, nv):
+    """:func:`filter_field` along x of one flattened row ``(NX nv)`` in place (``buf`` its length)."""
+    n = row.shape[0]
+    buf[:] = row
+    for q in range(2 * nv, n - 2 * nv):
+        row[q] = 0.0625 * (10.0 * buf[q] + 4.0 * (buf[q - nv] + buf[q + nv]) - (buf[q - 2 * nv] + buf[q + 2 * nv]))
+
+
+@njit(cache=True, error_model="numpy")
+def _filter_across(f3, axis, fixed, lo, hi, q0, q1, ring):
+    """:func:`filter_field` in place across the rows of the flattened field ``f3`` ``(NZ, NY, NX nv)``:
+    along y (``axis`` 1) the rows ``j = lo .. hi-1`` of plane ``k = fixed``, along z (``axis`` 2)
+    the planes ``k = lo .. hi-1`` of row ``j = fixed``; elements ``q0 .. q1-1`` of each row.
+    ``ring`` ``(3, >= q1 - q0)`` keeps the unfiltered rows ``m - 2, m - 1, m`` of row ``m``."""
+    n = q1 - q0
+    for m in range(lo - 2, hi):
+        src = f3[fixed, m, q0:q1] if axis == 1 else f3[m, fixed, q0:q1]
+        cur = ring[m % 3, :n]
+        cur[:] = src
+        if m >= lo:
+            p1 = f3[fixed, m + 1, q0:q1] if axis == 1 else f3[m + 1, fixed, q0:q1]
+            p2 = f3[fixed, m + 2, q0:q1] if axis == 1 else f3[m + 2, fixed, q0:q1]
+            _filter_into(src, ring[(m - 2) % 3, :n], ring[(m - 1) % 3, :n], cur, p1, p2, 0, n)
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def filter_field(f, tmp, active, k_lo, k_hi) -> None:
+def filter_field(f, active, k_lo, k_hi) -> None:
     """The grid-scale filter ``F = 1 - δ⁴/16`` along every active axis of the padded field ``f``
-    ``(NZ, NY, NX, nv)`` in place (``tmp`` the same shape): per axis
+    ``(NZ, NY, NX, nv)`` (C-contiguous) in place: per axis
     ``(-a_{i-2} + 4 a_{i-1} + 10 a_i + 4 a_{i+1} - a_{i+2})/16``, whose transfer function
     ``1 - sin⁴(θ/2)`` (θ = k Δx) vanishes at the Nyquist scale and is ``1 - θ⁴/16`` for
     resolved waves; it is symmetric and keeps the sum of a field over a periodic line (or one
@@ -212,24 +213,30 @@ def filter_field(f, tmp, active, k_lo, k_hi) -> None:
 
     Only the padded z rows ``k_lo .. k_hi-1`` are filtered along x and y, and along z the rows
     ``k_lo + 2 .. k_hi - 3`` (the rest of the field is not needed: a thin dust layer).
+
+    The passes x, y, z follow one another (each filters the output of the one before); x and y
+    run plane by plane in one parallel region, z over blocks of the (y, x) rows in a second.
+    Every element is the same expression of the same inputs whatever the split.
     """
     NZ, NY, NX, nv = f.shape
-    for axis in range(3):
-        if not active[axis]:
-            continue
-        if axis == 0:
-            na, nb, lo, hi = k_hi - k_lo, NY, 2, NX - 2
-        elif axis == 1:
-            na, nb, lo, hi = k_hi - k_lo, NX, 2, NY - 2
-        else:
-            na, nb, lo, hi = NY, NX, max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
-        nlines = na * nb
-        nchunk = min(nlines, ROW_CHUNKS)
-        for c in prange(nchunk):
-            for line in range(c * nlines // nchunk, (c + 1) * nlines // nchunk):
-                a = line // nb + (k_lo if axis < 2 else 0)
-                _filter_line(f, tmp, axis, a, line % nb, lo, hi)
-        for c in prange(nchunk):
-            for line in range(c * nlines // nchunk, (c + 1) * nlines // nchunk):
-                a = line // nb + (k_lo if axis < 2 else 0)
-                _copy_line(tmp, f, axis, a, line % nb, lo, hi)
+    L = NX * nv
+    f3 = f.reshape((NZ, NY, L))
+    if active[0] or active[1]:
+        for k in prange(k_lo, k_hi):
+            ring = np.empty((3, L))
+            if active[0]:
+                for j in range(NY):
+                    _filter_x(f3[k, j], ring[0], nv)
+            if active[1]:
+                _filter_across(f3, 1, k, 2, NY - 2, 0, L, ring)
+    if active[2]:
+        lo, hi = max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
+        if hi > lo:
+            nq = max(1, min(ROW_CHUNKS // NY, L // 64))  # pieces of a row: enough chunks in 2D (NY = 1)
+            nchunk = NY * nq
+            for c in prange(nchunk):
+                j = c // nq
+                q0 = (c % nq) * L // nq
+                q1 = (c % nq + 1) * L // nq
+                ring = np.empty((3, q1 - q0))
+                _filter_across(f3, 2, j, lo, hi, q0, q1, ring)

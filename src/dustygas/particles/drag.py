@@ -73,7 +73,8 @@ from ..physics.drag import epstein_stopping_time_scalar
 
 __all__ = ["FIXED", "EPSTEIN", "DRAG_LAWS", "Species", "stopping_time", "relax", "oscillator_step", "relaxation_rates",
            "relaxation_modes",
-           "cell_model", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
+           "cell_model", "cell_model_decay", "step_decay", "one_species_mode",
+           "one_species_response", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
 
 FIXED, EPSTEIN = 0, 1
 #: name -> code of the stopping-time laws
@@ -96,7 +97,7 @@ class Species(NamedTuple):
     cs: float
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def stopping_time(law: int, t_stop: float, grain: float, cs: float, rho: float) -> float:
     """Stopping time of a species with drag ``law`` in gas of density ``rho`` (thesis eq. 2.6)."""
     if law == EPSTEIN:
@@ -113,7 +114,7 @@ def relax(v0: float, ts: float, h: float, u0: float, a: float, g: float, r: floa
     return v0 * e + om * (u0 + g * ts) + a * (h - ts * om) + r
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def relax_with(v0: float, c, base: int, ts: float, u0: float, a: float, g: float, r: float) -> float:
     """:func:`relax` with its step factors ``c[base .. base+2] = (e^{-h/ts}, 1 - e^{-h/ts}, h - ts (1 - e^{-h/ts}))``."""
     return v0 * c[base] + c[base + 1] * (u0 + g * ts) + a * c[base + 2] + r
@@ -292,13 +293,52 @@ def relaxation_rates(eps, ts, n, mu) -> None:
     relaxation_modes(eps, ts, n, mu, np.empty(n), np.empty(n))
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def _dexp(a: float, b: float) -> float:
     """``(e^{-a} - e^{-b})/(b - a)`` without cancellation (``a, b >= 0``)."""
     lo, d = (a, b - a) if a <= b else (b, a - b)
     if d < 1e-12:
         return math.exp(-lo) * (1.0 - 0.5 * d)
     return math.exp(-lo) * (-math.expm1(-d)) / d
+
+
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
+def _dexp_known(a: float, b: float, e_b: float) -> float:
+    """:func:`_dexp` given ``e_b = e^{-b}`` (the same value: ``e^{-b}`` is its factor when ``a >= b``)."""
+    if a < b:
+        return _dexp(a, b)
+    d = a - b
+    if d < 1e-12:
+        return e_b * (1.0 - 0.5 * d)
+    return e_b * (-math.expm1(-d)) / d
+
+
+@njit(cache=True, error_model="numpy")
+def step_decay(h: float, ts, s: int, decay) -> None:
+    """``decay[0, s] = e^{-h/T_s}``, ``decay[1, s] = e^{-h/T_s} - 1`` (``expm1``) for species ``s``
+    of stopping time ``ts[s]``: the factors of :func:`cell_model_decay` (the same for every cell
+    when the stopping time is fixed)."""
+    b = h / ts[s]
+    decay[0, s] = math.exp(-b)
+    decay[1, s] = math.expm1(-b)
+
+
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
+def one_species_mode(rho_g: float, rho_1: float, T: float, h: float, e_b: float, em1_b: float) -> tuple[float, float]:
+    """One species in the cell (:func:`cell_model`): ``ε = ρ_1/ρ_g`` and the factor of its one mode
+    (rate ``μ = (1 + ε)/T``, components ``(1, -1/ε)``), ``b (e^{-μh} - e^{-b})/(μh - b) + e^{-b} - 1``
+    with ``b = h/T``; ``e_b``, ``em1_b``: :func:`step_decay`. Scalars only: a kernel inlines it."""
+    eps = rho_1 / rho_g
+    mu1 = (1.0 + eps) / T
+    b = h / T
+    return eps, b * _dexp_known(mu1 * h, b, e_b) + em1_b
+
+
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
+def one_species_response(eps: float, fac: float, T: float, du: float, df: float) -> float:
+    """The response ``R`` of one component for one species (:func:`one_species_mode`), from
+    ``du = u0 - V`` and ``df = f_g - f_s``: ``c_k = ε du/(1 + ε)``, ``f_k/μ = ε T df/(1 + ε)²``."""
+    return eps / (1.0 + eps) * (du - T * df / (1.0 + eps)) * fac
 
 
 @njit(cache=True, error_model="numpy")
@@ -311,6 +351,16 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
     (``rho_s = 0``: absent); ``ts_s`` (nsp,): the species' stopping times in this cell;
     scratch: ``work`` (6, nsp) float, ``perm`` (nsp,) int64, ``bk`` (nsp, 3) float.
     """
+    decay = np.empty((2, nsp))
+    for s in range(nsp):
+        step_decay(h, ts_s, s, decay)
+    cell_model_decay(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, out_a, out_r, work, perm, bk)
+
+
+@njit(cache=True, error_model="numpy")
+def cell_model_decay(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, out_a, out_r, work, perm, bk) -> None:
+    """:func:`cell_model` with the species' decay factors ``decay`` (2, nsp) given
+    (:func:`step_decay`): a kernel computes those of fixed stopping times once per step."""
     tot = rho_g
     for c in range(3):
         out_a[c] = rho_g * f_g[c]
@@ -326,15 +376,11 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
             out_r[s, c] = 0.0
     if tot == rho_g:
         return
-    if nsp == 1:  # one species: mu = (1 + eps)/T, mode components (1, -1/eps)
+    if nsp == 1:
         T = ts_s[0]
-        eps = rho_s[0] / rho_g
-        mu1 = (1.0 + eps) / T
-        b = h / T
-        fac = b * _dexp(mu1 * h, b) + math.expm1(-b)
+        eps, fac = one_species_mode(rho_g, rho_s[0], T, h, decay[0, 0], decay[1, 0])
         for c in range(3):
-            # c_k = eps (u0 - V)/(1 + eps); f_k/mu = eps T (f_g - f_s)/(1 + eps)^2
-            out_r[0, c] = eps / (1.0 + eps) * ((u0[c] - vel_s[0, c]) - T * (f_g[c] - acc_s[0, c]) / (1.0 + eps)) * fac
+            out_r[0, c] = one_species_response(eps, fac, T, u0[c] - vel_s[0, c], f_g[c] - acc_s[0, c])
         return
     # group the present species by stopping time (equal times share a pole), sorted by
     # decreasing T: group g has eps_g, T_g; member species map to it
@@ -411,8 +457,8 @@ def cell_model(rho_g, u0, f_g, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, 
     for s in range(nsp):
         T = ts_s[s]
         b = h / T
-        om = -math.expm1(-b)
+        om = -decay[1, s]
         for k in range(ng):
-            fac = b * _dexp(mu[k] * h, b) - om
+            fac = b * _dexp_known(mu[k] * h, b, decay[0, s]) - om
             for c in range(3):
                 out_r[s, c] += bk[k, c] * fac

@@ -50,7 +50,7 @@ KERNEL_WIDTH = (1, 2, 3, 5)
 KERNEL_REACH = (1, 1, 1, 2)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def axis_weights(s: float, order: int):
     """First cell ``i`` and the weights ``(w0, ..., w4)`` of cells ``i, ..., i+4`` along one axis.
 
@@ -78,7 +78,7 @@ def axis_weights(s: float, order: int):
             -e * wp)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def cell_weights(s: float, order: int, reach: int, out) -> int:
     """Global index ``c`` of the cell containing the particle (``floor(s + 1/2)``) and, in
     ``out[0 .. 2 reach]``, the weights of cells ``c - reach .. c + reach`` (zeros where the
@@ -99,7 +99,7 @@ def cell_weights(s: float, order: int, reach: int, out) -> int:
     return c
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def axis_cell(x: float, x0: float, inv_dx: float, offset: int, n: int) -> int:
     """Local index of the cell containing ``x`` along an axis of this block: ``floor((x - x0)/Δx)``
     from the global origin ``x0``, minus the block's first cell ``offset``, clipped into
@@ -110,7 +110,7 @@ def axis_cell(x: float, x0: float, inv_dx: float, offset: int, n: int) -> int:
     return min(max(c, 0), n - 1)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def axis_stencil(x: float, x0: float, inv_dx: float, offset: int, n: int, order: int, reach: int, out) -> int:
     """:func:`axis_cell` and the weights ``out[0 .. 2 reach]`` of the cells around it (:func:`cell_weights`).
 

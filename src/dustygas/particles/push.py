@@ -19,7 +19,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .drag import FIXED, MAX_SPECIES, N_COEF, cell_model, relax_with, step_coefficients, stopping_time
+from .drag import (FIXED, MAX_SPECIES, N_COEF, cell_model_decay, one_species_mode, one_species_response, relax_with,
+                   step_coefficients, step_decay, stopping_time)
 from .interp import axis_stencil
 from .terms import ForceTable, frame_acceleration
 
@@ -128,6 +129,10 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
         work = np.empty((6, MAX_SPECIES))
         perm = np.empty(MAX_SPECIES, dtype=np.int64)
         bk = np.empty((MAX_SPECIES, 3))
+        decay = np.empty((2, MAX_SPECIES))
+        for s in range(nsp):
+            if sp_tab.law[s] == FIXED:
+                step_decay(h, sp_tab.t_stop, s, decay)
         for r in range(chunk * nrows // nchunk, (chunk + 1) * nrows // nchunk):
             k = k_lo + r % nk
             j = r // nk
@@ -141,15 +146,15 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                     u0[c] = u_old[1 + c, kk, jj, ii] / rho0
                     fg[c] = ((u_half[1 + c, kk, jj, ii] - pred_dt * s_drag[c, k, j, i]) / rhoh - u0[c]) / pred_dt
                 u0[1] += shear_rate * x
-                cell = traj[k + tz, j + ty, i + tx]
-                cell[U0] = u0[0]
-                cell[U0 + 1] = u0[1]
-                cell[U0 + 2] = u0[2]
+                tk, tj, ti = k + tz, j + ty, i + tx
+                traj[tk, tj, ti, U0] = u0[0]
+                traj[tk, tj, ti, U0 + 1] = u0[1]
+                traj[tk, tj, ti, U0 + 2] = u0[2]
                 if c_rho >= 0:
-                    cell[c_rho] = rhoh
+                    traj[tk, tj, ti, c_rho] = rhoh
                 if c_mesh >= 0:
                     for c in range(3):
-                        cell[c_mesh + c] = mesh_field[c, k, j, i]
+                        traj[tk, tj, ti, c_mesh + c] = mesh_field[c, k, j, i]
                 dusty = False
                 if feedback:
                     for s in range(nsp):
@@ -157,15 +162,17 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                             dusty = True
                 if not dusty:
                     for c in range(3):
-                        cell[ACC + c] = fg[c]
+                        traj[tk, tj, ti, ACC + c] = fg[c]
                     for s in range(nsp):
                         for c in range(3):
-                            cell[RESPONSE + 3 * s + c] = 0.0
+                            traj[tk, tj, ti, RESPONSE + 3 * s + c] = 0.0
                     continue
                 for s in range(nsp):
                     d = dep[k, j, i, 4 * s]
                     rho_s[s] = d
                     ts_s[s] = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, rhoh)
+                    if sp_tab.law[s] != FIXED:
+                        step_decay(h, ts_s, s, decay)
                     if d > 0.0:
                         vx = dep[k, j, i, 4 * s + 1] / d
                         vy = dep[k, j, i, 4 * s + 2] / d
@@ -175,12 +182,25 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
                         acc_s[s, 0] = ax + mesh_field[0, k, j, i]
                         acc_s[s, 1] = ay + mesh_field[1, k, j, i]
                         acc_s[s, 2] = az + mesh_field[2, k, j, i] - ft.gravity_z * z
-                cell_model(rhoh, u0, fg, nsp, rho_s, vel_s, acc_s, ts_s, h, out_a, out_r, work, perm, bk)
+                if nsp == 1:  # cell_model's one-species case without the call (most of its cost)
+                    rho1 = rho_s[0]
+                    tot = rhoh + rho1
+                    T = ts_s[0]
+                    eps = fac = 0.0
+                    if tot != rhoh:
+                        eps, fac = one_species_mode(rhoh, rho1, T, h, decay[0, 0], decay[1, 0])
+                    for c in range(3):
+                        out_a[c] = (rhoh * fg[c] + rho1 * acc_s[0, c]) / tot
+                        out_r[0, c] = (one_species_response(eps, fac, T, u0[c] - vel_s[0, c], fg[c] - acc_s[0, c])
+                                       if tot != rhoh else 0.0)
+                else:
+                    cell_model_decay(rhoh, u0, fg, nsp, rho_s, vel_s, acc_s, ts_s, h, decay, out_a, out_r, work, perm,
+                                     bk)
                 for c in range(3):
-                    cell[ACC + c] = out_a[c]
+                    traj[tk, tj, ti, ACC + c] = out_a[c]
                 for s in range(nsp):
                     for c in range(3):
-                        cell[RESPONSE + 3 * s + c] = out_r[s, c]
+                        traj[tk, tj, ti, RESPONSE + 3 * s + c] = out_r[s, c]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -233,7 +253,6 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
     w2 = ft.gravity_z
     nchunk = min(max(n, 1), PARTICLE_CHUNKS)
     for c in prange(nchunk):
-        g = np.empty(13)  # u0 (3), A (3), R (3), rho, mesh (3)
         own = np.empty(N_COEF)
         bx = by = bz = 0.0
         mx = my = mz = 0.0
@@ -242,8 +261,9 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             i, j, k = key % nx, (key // nx) % ny, key // (nx * ny)
             s = species[p]
             rcol = RESPONSE + 3 * s
-            for q in range(13):
-                g[q] = 0.0
+            # the gathered u0 (3), A (3), R (3), rho, mesh acceleration (3): scalars, which stay
+            # in registers (sums into an array are stores the compiler cannot drop)
+            u0x = u0y = u0z = ax_ = ay_ = az_ = rx_ = ry_ = rz_ = rho_ = mx_ = my_ = mz_ = 0.0
             for dk in range(-rz, rz + 1):
                 wz = wts[p, 2, R + dk]
                 if wz == 0.0:
@@ -252,44 +272,50 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
                     wyz = wz * wts[p, 1, R + dj]
                     if wyz == 0.0:
                         continue
-                    row = traj[k + tz + dk, j + ty + dj]
+                    kk, jj = k + tz + dk, j + ty + dj
                     for di in range(-rx, rx + 1):
                         w = wyz * wts[p, 0, R + di]
                         if w == 0.0:
                             continue
-                        f = row[i + tx + di]
-                        for q in range(6):
-                            g[q] += w * f[q]
-                        for q in range(3):
-                            g[6 + q] += w * f[rcol + q]
+                        ii = i + tx + di
+                        u0x += w * traj[kk, jj, ii, U0]
+                        u0y += w * traj[kk, jj, ii, U0 + 1]
+                        u0z += w * traj[kk, jj, ii, U0 + 2]
+                        ax_ += w * traj[kk, jj, ii, ACC]
+                        ay_ += w * traj[kk, jj, ii, ACC + 1]
+                        az_ += w * traj[kk, jj, ii, ACC + 2]
+                        rx_ += w * traj[kk, jj, ii, rcol]
+                        ry_ += w * traj[kk, jj, ii, rcol + 1]
+                        rz_ += w * traj[kk, jj, ii, rcol + 2]
                         if c_rho >= 0:
-                            g[9] += w * f[c_rho]
+                            rho_ += w * traj[kk, jj, ii, c_rho]
                         if c_mesh >= 0:
-                            for q in range(3):
-                                g[10 + q] += w * f[c_mesh + q]
+                            mx_ += w * traj[kk, jj, ii, c_mesh]
+                            my_ += w * traj[kk, jj, ii, c_mesh + 1]
+                            mz_ += w * traj[kk, jj, ii, c_mesh + 2]
             x, y, z = pos[0, p], pos[1, p], pos[2, p]
             v0x, v0y, v0z = vel[0, p], vel[1, p], vel[2, p]
             x0 = x - 0.5 * h * v0x if active[0] else x
             w0y = v0y + shear_rate * x0
-            ux, uy, uz = g[U0], g[U0 + 1], g[U0 + 2]
+            ux, uy, uz = u0x, u0y, u0z
             if sp_tab.law[s] == FIXED:
                 ts = sp_tab.t_stop[s]
                 cf = coef[s]
             else:
-                ts = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, g[9])
+                ts = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, rho_)
                 step_coefficients(ts, w2, h, own)
                 cf = own
             # the held accelerations at x^{n+1/2} and the velocity predicted over half a step
             ax0, ay0, az0 = frame_acceleration(x, v0x, w0y, ft)
-            mgx, mgy, mgz = (g[10], g[11], g[12]) if c_mesh >= 0 else (0.0, 0.0, 0.0)
-            hx = relax_with(v0x, cf, 3, ts, ux, g[ACC], ax0 + mgx, 0.0)
-            hy = relax_with(w0y, cf, 3, ts, uy, g[ACC + 1], ay0 + mgy, 0.0)
+            mgx, mgy, mgz = mx_, my_, mz_
+            hx = relax_with(v0x, cf, 3, ts, ux, ax_, ax0 + mgx, 0.0)
+            hy = relax_with(w0y, cf, 3, ts, uy, ay_, ay0 + mgy, 0.0)
             gx_, gy_, _ = frame_acceleration(x, hx, hy, ft)
             gx_ += mgx
             gy_ += mgy
             gz_ = az0 + mgz
-            nvx = relax_with(v0x, cf, 0, ts, ux, g[ACC], gx_, g[6])
-            nwy = relax_with(w0y, cf, 0, ts, uy, g[ACC + 1], gy_, g[7])
+            nvx = relax_with(v0x, cf, 0, ts, ux, ax_, gx_, rx_)
+            nwy = relax_with(w0y, cf, 0, ts, uy, ay_, gy_, ry_)
             x1 = x + 0.5 * h * nvx if active[0] else x
             nvy = nwy - shear_rate * x1
             jx = nvx - v0x - gx_ * h
@@ -297,14 +323,14 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             if w2 > 0.0:
                 z0 = z - 0.5 * h * v0z
                 b0 = gz_ + uz / ts
-                b1 = g[ACC + 2] / ts
+                b1 = az_ / ts
                 zo = cf[6] * z0 + cf[7] * v0z + cf[8] * b0 + cf[9] * b1
                 vo = cf[10] * z0 + cf[11] * v0z + cf[12] * b0 + cf[13] * b1
-                nvz = vo + g[8]
-                nz_ = zo + 0.5 * h * g[8]
+                nvz = vo + rz_
+                nz_ = zo + 0.5 * h * rz_
                 ext_z = gz_ * h - w2 * h * 0.5 * (z0 + nz_)
             else:
-                nvz = relax_with(v0z, cf, 0, ts, uz, g[ACC + 2], gz_, g[8])
+                nvz = relax_with(v0z, cf, 0, ts, uz, az_, gz_, rz_)
                 ext_z = gz_ * h
                 nz_ = z + 0.5 * h * nvz
             jz = nvz - v0z - ext_z

@@ -155,7 +155,7 @@ def force_table(terms) -> ForceTable:
     return ForceTable(**table)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
 def frame_acceleration(x, vx, vy, ft):
     """The velocity-independent and Coriolis part ``(a_x, a_y, a_z)`` of the particle terms at
     ``x``, ``(v_x, v_y)`` (without vertical gravity and mesh fields, handled apart)."""
