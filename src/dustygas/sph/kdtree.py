@@ -19,7 +19,7 @@ from numba import njit, prange
 
 from .pairs import candidate_buffers, minimum_image, scan_candidates
 
-__all__ = ["build_tree", "tree_search"]
+__all__ = ["build_tree", "tree_search", "leaves_in_reach", "box_gap2"]
 
 
 @njit(cache=True)
@@ -101,24 +101,26 @@ def build_tree(pos, h, ndim, leaf_size):
     return order, start[:count], end[:count], child[:count], lo[:count], hi[:count], hmax[:count]
 
 
-@njit(cache=True)
-def _box_gap2(alo, ahi, blo, bhi, length, periodic):
-    """Squared distance between two boxes (minimum image along periodic dimensions)."""
+@njit(inline="always")
+def box_gap2(qlo, qhi, lo, hi, node, length, periodic):
+    """Squared distance between the query box ``[qlo, qhi]`` and the box ``[lo[node], hi[node]]``
+    of a node: the gap between the boxes along each axis (0 where they overlap), minimum image
+    along periodic axes."""
     g2 = 0.0
     for d in range(3):
-        ca = 0.5 * (alo[d] + ahi[d])
-        cb = 0.5 * (blo[d] + bhi[d])
+        ca = 0.5 * (qlo[d] + qhi[d])
+        cb = 0.5 * (lo[node, d] + hi[node, d])
         sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
-        gap = sep - 0.5 * (ahi[d] - alo[d]) - 0.5 * (bhi[d] - blo[d])
+        gap = sep - 0.5 * (qhi[d] - qlo[d]) - 0.5 * (hi[node, d] - lo[node, d])
         if gap > 0.0:
             g2 += gap * gap
     return g2
 
 
 @njit(cache=True)
-def _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, out):
-    """Leaves of the source tree within reach of query leaf ``leaf``: written to ``out`` (when
-    given room), returns how many particles they hold and how many leaves."""
+def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, stack, out):
+    """The walk of :func:`leaves_in_reach`, writing the leaves to ``out`` while there is room;
+    returns how many particles they hold and how many leaves."""
     top = 1
     stack[0] = 0
     total = 0
@@ -126,19 +128,40 @@ def _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, 
     while top > 0:
         top -= 1
         node = stack[top]
-        reach = max(qhmax[leaf], shmax[node])
-        if _box_gap2(qlo[leaf], qhi[leaf], slo[node], shi[node], length, periodic) >= r2 * reach * reach:
+        reach = max(qh, hmax[node])
+        if box_gap2(qlo, qhi, lo, hi, node, length, periodic) >= r2 * reach * reach:
             continue
-        if schild[node] >= 0:
-            stack[top] = schild[node]
-            stack[top + 1] = schild[node] + 1
+        c = child[node]
+        if c >= 0:
+            stack[top] = c
+            stack[top + 1] = c + 1
             top += 2
             continue
         if nleaves < out.shape[0]:
             out[nleaves] = node
         nleaves += 1
-        total += send[node] - sstart[node]
+        total += end[node] - start[node]
     return total, nleaves
+
+
+@njit(cache=True)
+def leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2):
+    """The leaves of a tree that particles of the query box ``[qlo, qhi]`` may reach.
+
+    A node is opened unless its box stays farther from the query box than
+    :math:`R\max(h_q, h^{\rm node}_{\max})` (``r2`` = :math:`R^2`, ``qh`` = :math:`h_q` the largest
+    query smoothing length; module docstring), so every pair with :math:`r_{ab} < R\max(h_a, h_b)`
+    lies in the leaves returned. ``(lo, hi, hmax, child, start, end)`` are the node arrays of
+    :func:`build_tree` (or refitted ones). Returns ``(m, nl, nodes)``: the number of particles in
+    the leaves, the number of leaves and an array whose first ``nl`` entries are the leaves.
+    """
+    stack = np.empty(128, np.int64)
+    nodes = np.empty(64, np.int64)
+    m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, stack, nodes)
+    if nl > nodes.shape[0]:
+        nodes = np.empty(nl, np.int64)
+        _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, stack, nodes)
+    return m, nl, nodes
 
 
 @njit(parallel=True, cache=True)
@@ -156,12 +179,8 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
     leaves = np.flatnonzero(qchild == -1)
     for il in prange(leaves.shape[0]):
         leaf = leaves[il]
-        stack = np.empty(128, np.int64)
-        nodes = np.empty(64, np.int64)
-        m, nl = _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
-        if nl > nodes.shape[0]:
-            nodes = np.empty(nl, np.int64)
-            _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+        m, nl, nodes = leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send, length,
+                                       periodic, r2)
         px, py, pz, ph2, pid, d2 = candidate_buffers(m)
         j = 0
         for t in range(nl):
