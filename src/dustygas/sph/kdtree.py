@@ -149,8 +149,8 @@ def leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, perio
     """The leaves of a tree that particles of the query box ``[qlo, qhi]`` may reach.
 
     A node is opened unless its box stays farther from the query box than
-    :math:`R\max(h_q, h^{\rm node}_{\max})` (``r2`` = :math:`R^2`, ``qh`` = :math:`h_q` the largest
-    query smoothing length; module docstring), so every pair with :math:`r_{ab} < R\max(h_a, h_b)`
+    :math:`R\\max(h_q, h^{\\rm node}_{\\max})` (``r2`` = :math:`R^2`, ``qh`` = :math:`h_q` the largest
+    query smoothing length; module docstring), so every pair with :math:`r_{ab} < R\\max(h_a, h_b)`
     lies in the leaves returned. ``(lo, hi, hmax, child, start, end)`` are the node arrays of
     :func:`build_tree` (or refitted ones). Returns ``(m, nl, nodes)``: the number of particles in
     the leaves, the number of leaves and an array whose first ``nl`` entries are the leaves.
