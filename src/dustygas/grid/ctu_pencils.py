@@ -28,8 +28,7 @@ from .shearing_box import momentum_source
 from .sweep import gather_primitives, pencil_frame, pencil_order
 from .trace import trace_pencil
 
-__all__ = ["predict_pencils", "transverse_rows", "transverse_pencils", "half_step_rows",
-           "final_rows"]
+__all__ = ["predict_pencils", "transverse_rows", "transverse_pencils", "half_step_rows", "final_rows"]
 
 
 @njit(cache=True, error_model="numpy")
