@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .kdtree import leaves_in_reach
+from .kdtree import gather_leaves, leaves_in_reach
 from .neighbours import minimum_image
 
 __all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
@@ -112,25 +112,10 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
                 qhi[d] = max(qhi[d], pos[a, d])
             qh = max(qh, h_query[i])
         m, nl, nodes = leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2)
-        px = np.empty(m)
-        py = np.empty(m)
-        pz = np.empty(m)
-        ph2 = np.empty(m)
-        pid = np.empty(m, np.int64)
+        px, py, pz, ph2, pid, d2 = gather_leaves(nodes, nl, m, order, start, end, pos, h_src)
         pt = np.empty(m, np.int64)
-        d2 = np.empty(m)
-        j = 0
-        for t in range(nl):
-            node = nodes[t]
-            for k in range(start[node], end[node]):
-                b = order[k]
-                px[j] = pos[b, 0]
-                py[j] = pos[b, 1]
-                pz[j] = pos[b, 2]
-                ph2[j] = h_src[b] * h_src[b]
-                pid[j] = b
-                pt[j] = ptype[b]
-                j += 1
+        for j in range(m):
+            pt[j] = ptype[pid[j]]
         for i in range(s0, s1):
             a = act[i]
             xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]

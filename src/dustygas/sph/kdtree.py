@@ -19,7 +19,7 @@ from numba import njit, prange
 
 from .pairs import candidate_buffers, minimum_image, scan_candidates
 
-__all__ = ["build_tree", "tree_search", "leaves_in_reach", "box_gap2"]
+__all__ = ["build_tree", "tree_search", "leaves_in_reach", "gather_leaves", "box_gap2"]
 
 
 @njit(cache=True)
@@ -164,6 +164,26 @@ def leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, perio
     return m, nl, nodes
 
 
+@njit(inline="always")
+def gather_leaves(nodes, nl, m, order, start, end, pos, h):
+    """The ``m`` particles of the leaves ``nodes[:nl]`` (:func:`leaves_in_reach`), copied in leaf
+    order into the contiguous buffers ``(x, y, z, h^2, index, d2)`` of
+    :func:`~dustygas.sph.pairs.candidate_buffers` (``d2`` left for the distance pass)."""
+    px, py, pz, ph2, pid, d2 = candidate_buffers(m)
+    j = 0
+    for t in range(nl):
+        node = nodes[t]
+        for k in range(start[node], end[node]):
+            b = order[k]
+            px[j] = pos[b, 0]
+            py[j] = pos[b, 1]
+            pz[j] = pos[b, 2]
+            ph2[j] = h[b] * h[b]
+            pid[j] = b
+            j += 1
+    return px, py, pz, ph2, pid, d2
+
+
 @njit(parallel=True, cache=True)
 def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, exclude_self, index, count, overlap):
     """Neighbour rows of the queries (tree ``qtree``) among the sources (tree ``stree``): per query
@@ -181,18 +201,7 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
         leaf = leaves[il]
         m, nl, nodes = leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send, length,
                                        periodic, r2)
-        px, py, pz, ph2, pid, d2 = candidate_buffers(m)
-        j = 0
-        for t in range(nl):
-            node = nodes[t]
-            for k in range(sstart[node], send[node]):
-                b = sorder[k]
-                px[j] = spos[b, 0]
-                py[j] = spos[b, 1]
-                pz[j] = spos[b, 2]
-                ph2[j] = sh[b] * sh[b]
-                pid[j] = b
-                j += 1
+        px, py, pz, ph2, pid, d2 = gather_leaves(nodes, nl, m, sorder, sstart, send, spos, sh)
         for k in range(qstart[leaf], qend[leaf]):
             scan_candidates(qorder[k], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
                             index, count, overlap)
