@@ -142,10 +142,7 @@ def _snapshot(run, index):
 def ring_positions(run: str | Path, indices=None) -> list[dict]:
     """Midplane positions of the dust of every ring in the snapshots ``indices`` (default: all):
     ``{"time": t, "rings": {k: (x, y)}}`` per snapshot."""
-    rd = RunDirectory(run)
-    files = rd.snapshots()
-    if not files:
-        raise UserError(f"{run}: no snapshots")
+    files = RunDirectory(run).require_snapshots()
     indices = range(len(files)) if indices is None else indices
     out = []
     for i in indices:

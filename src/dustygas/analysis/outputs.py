@@ -20,9 +20,7 @@ __all__ = ["analyze_stratified", "spread_snapshots"]
 
 def spread_snapshots(run, count: int = 4) -> list[int]:
     """Indices of ``count`` snapshots spread evenly over a run (the last included)."""
-    n = len(RunDirectory(run).snapshots())
-    if n == 0:
-        raise UserError(f"{run}: no snapshots")
+    n = len(RunDirectory(run).require_snapshots())
     return sorted({int(round(i)) for i in np.linspace(0, n - 1, min(count, n))})
 
 

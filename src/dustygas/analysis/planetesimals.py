@@ -88,20 +88,13 @@ def run_clumps(run: str | Path, snapshots: str | Sequence[int] = "last", write: 
     from ..io.rundir import RunDirectory
 
     rd = RunDirectory(run)
-    if not rd.path.is_dir():
-        raise UserError(f"{run}: no such run directory")
-    files = rd.snapshots()
-    if not files:
-        raise UserError(f"{run}: no snapshots")
+    files = rd.require_snapshots()
     if snapshots == "last":
         chosen = [files[-1]]
     elif snapshots == "all":
         chosen = files
     else:
-        try:
-            chosen = [files[int(i)] for i in snapshots]
-        except IndexError:
-            raise UserError(f"{run}: snapshot index out of range (it has {len(files)})") from None
+        chosen = [rd.snapshot_at(i) for i in snapshots]
     out = []
     for snap in chosen:
         arrays, attrs = read_h5(snap)

@@ -154,14 +154,7 @@ class Snapshot:
 
 def read_snapshot(run: str | Path, index: int = -1) -> Snapshot:
     """A snapshot of a particle run (default the newest)."""
-    rd = RunDirectory(run)
-    snaps = rd.snapshots()
-    if not snaps:
-        raise UserError(f"{run}: no snapshots")
-    try:
-        arrays, attrs = rd.read_snapshot(index)
-    except IndexError:
-        raise UserError(f"{run}: no snapshot {index} (it has {len(snaps)})") from None
+    arrays, attrs = RunDirectory(run).read_snapshot(index)
     if "rho_p" not in arrays or "particles/pos" not in arrays:
         raise UserError(f"{run}: not a particle run (its snapshots hold no rho_p)")
     return Snapshot(float(attrs["time"]), arrays["rho_p"], arrays["x"], arrays["y"], arrays["z"],

@@ -130,12 +130,7 @@ def angle_history(run: str | Path, exclude_axisymmetric: bool = True) -> dict[st
     from ..io.hdf5 import read_h5
     from ..io.rundir import RunDirectory
 
-    rd = RunDirectory(run)
-    if not rd.path.is_dir():
-        raise UserError(f"{run}: no such run directory")
-    snaps = rd.snapshots()
-    if not snaps:
-        raise UserError(f"{run}: no snapshots (the run must write snapshots holding the dust)")
+    snaps = RunDirectory(run).require_snapshots(" (the run must write snapshots holding the dust)")
     rows = []
     for path in snaps:
         arrays, attrs = read_h5(path)

@@ -42,7 +42,7 @@ def main(args: argparse.Namespace) -> int:
 
     from ..errors import UserError
     from ..io.atomic import atomic_path
-    from ..plot.run import _run, _snapshot_path, history_figure, plot_snapshot, write_movie
+    from ..plot.run import _run, history_figure, plot_snapshot, write_movie
 
     rundir = _run(args.run)
     if args.npix < 8 or args.fps < 1:
@@ -53,7 +53,7 @@ def main(args: argparse.Namespace) -> int:
     figures = []
     if not args.no_history and rundir.history_file.exists():
         figures.append(("history.png", history_figure(args.run, args.history)))
-    snap = _snapshot_path(rundir, args.snapshot)
+    snap = rundir.snapshot_at(args.snapshot)
     fig = plot_snapshot(args.run, args.snapshot, args.field, args.kind, args.axis, args.at, args.log, npix=args.npix)
     kind = "" if args.field == "particles" else f"_{args.kind}"
     figures.append((f"{snap.stem}_{args.field}{kind}.png", fig))

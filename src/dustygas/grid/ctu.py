@@ -48,11 +48,11 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import SHEAR_PERIODIC, correct_radial_items, fill_ghost_lines, ghost_lines
-from .ctu_pencils import final_rows, half_step_rows, pencil_frame, predict_pencils, transverse_pencils, transverse_rows
+from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
+from .ctu_pencils import final_rows, half_step_rows, predict_pencils, transverse_pencils, transverse_rows
 from .diagnostics import combine_rates
-from .integrator import PARALLEL_REMAP_NY
 from .orbital_advection import remap_columns
+from .sweep import pencil_frame
 
 __all__ = ["CTUWork", "ctu_work", "ctu_stage"]
 
@@ -77,7 +77,7 @@ def ctu_work(array_shape: tuple[int, int, int], ndim: int) -> CTUWork:
 
 @njit(cache=True, error_model="numpy")
 def _others(axis):
-    """The two other axes of ``axis`` in pencil order (the order of :func:`pencil_frame`)."""
+    """The two other axes of ``axis`` in pencil order (the order of :func:`~dustygas.grid.sweep.pencil_frame`)."""
     if axis == 0:
         return 1, 2
     if axis == 1:
@@ -102,23 +102,6 @@ def _corrected_slot(axis, other):
     """Slot of the flux of ``axis`` corrected by ``other`` (3D)."""
     first, _ = _others(axis)
     return 3 + 2 * axis + (0 if other == first else 1)
-
-
-@njit(inline="always")
-def _fill_ghosts(u, t, lay, sp, bc, nthreads) -> None:
-    """Ghost zones of ``u`` at ``t``: axes z, y, x; items in parallel where it pays (as
-    :func:`~dustygas.grid.integrator.advance_gas` does; inlined, so its loops are parallel
-    regions of :func:`ctu_stage`)."""
-    shearing = bc.x_lo == SHEAR_PERIODIC
-    for back in range(3):
-        gaxis = 2 - back
-        nlines = ghost_lines(gaxis, lay, bc)
-        if nlines > 1 and (lay.nz > 1 or (gaxis == 0 and shearing and lay.ny >= PARALLEL_REMAP_NY)):
-            nchunk = min(nlines, nthreads)
-            for c in prange(nchunk):
-                fill_ghost_lines(u, gaxis, c * nlines // nchunk, (c + 1) * nlines // nchunk, t, lay, sp, bc)
-        elif nlines > 0:
-            fill_ghost_lines(u, gaxis, 0, nlines, t, lay, sp, bc)
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -149,7 +132,7 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
     shearing = bc.x_lo == SHEAR_PERIODIC
     nrow = ny * nz
     if stage == 0:
-        _fill_ghosts(u, t, lay, sp, bc, nthreads)
+        fill_ghosts_threaded(u, t, lay, sp, bc, nthreads)
         for axis in range(3):
             if not active[axis]:
                 continue
@@ -223,18 +206,7 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
         first_update = False
     t_half = t + 0.5 * dt
     if shearing:
-        plane_flux = np.zeros(nz)
-        nitems = 4 * nz
-        if nz > 1 or ny >= PARALLEL_REMAP_NY:
-            nchunk = min(nitems, nthreads)
-            for c in prange(nchunk):
-                correct_radial_items(uh, bflux, dt / sp.dx, t_half, lay, sp, bc, c * nitems // nchunk,
-                                     (c + 1) * nitems // nchunk, plane_flux)
-        else:
-            correct_radial_items(uh, bflux, dt / sp.dx, t_half, lay, sp, bc, 0, nitems, plane_flux)
-        mass_flux = 0.0
-        for k in range(nz):
-            mass_flux += plane_flux[k]
+        mass_flux = correct_radial_fluxes(uh, bflux, dt / sp.dx, t_half, lay, sp, bc, nthreads)
         budget[0] += dt * mass_flux * sp.dy * sp.dz
     y_source = np.zeros(nrow)
     rates = np.zeros(nrow)

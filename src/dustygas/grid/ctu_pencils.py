@@ -21,41 +21,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .diagnostics import cell_rate
+from .diagnostics import cell_rate, fold_rate
 from .reconstruct import DONOR, reconstruct_faces
 from .riemann import riemann_fluxes
 from .shearing_box import momentum_source
+from .sweep import gather_primitives, pencil_frame, pencil_order
 from .trace import trace_pencil
 
-__all__ = ["pencil_frame", "predict_pencils", "transverse_rows", "transverse_pencils", "half_step_rows",
-           "final_rows"]
-
-
-@njit(cache=True, error_model="numpy")
-def pencil_frame(axis, lay, sp, ext_a, ext_b):
-    """Geometry of the pencils along ``axis``: ``(n, g, stride, d, na, ga, sa, ea, nb, gb, sb, eb)``.
-
-    ``na, nb`` are the domain cells of the two transverse axes (pencil order: ``(y, z)`` for
-    x pencils, ``(x, z)`` for y, ``(x, y)`` for z), ``ga, gb`` their ghosts, ``sa, sb`` their
-    strides and ``ea, eb`` the extra ghost layers covered on each side (``ext_a``, ``ext_b``
-    where the axis is active, else 0). Pencil ``p`` sits at transverse domain indices
-    ``(p % (na + 2 ea) - ea, p // (na + 2 ea) - eb)``.
-    """
-    nx, ny, nz, gx, gy, gz = lay
-    NX = nx + 2 * gx
-    NY = ny + 2 * gy
-    if axis == 0:
-        n, g, stride, d = nx, gx, 1, sp.dx
-        na, ga, sa, nb, gb, sb = ny, gy, NX, nz, gz, NX * NY
-    elif axis == 1:
-        n, g, stride, d = ny, gy, NX, sp.dy
-        na, ga, sa, nb, gb, sb = nx, gx, 1, nz, gz, NX * NY
-    else:
-        n, g, stride, d = nz, gz, NX * NY, sp.dz
-        na, ga, sa, nb, gb, sb = nx, gx, 1, ny, gy, NX
-    ea = ext_a if na > 1 else 0
-    eb = ext_b if nb > 1 else 0
-    return n, g, stride, d, na, ga, sa, ea, nb, gb, sb, eb
+__all__ = ["predict_pencils", "transverse_rows", "transverse_pencils", "half_step_rows", "final_rows"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -85,12 +58,7 @@ def predict_pencils(u, axis, lay, sp, scheme, st, xc, zc, ext, use_ext, wrap, dt
     n, g, stride, d, na, ga, sa, ea, nb, gb, sb, eb = pencil_frame(axis, lay, sp, 1, 1)
     dtdx = dt / d
     half = 0.5 * dt
-    c1 = 1 + axis
-    c2 = 1 + (axis + 1) % 3
-    c3 = 1 + (axis + 2) % 3
-    row_x = 1 + (3 - axis) % 3
-    row_y = 1 + (4 - axis) % 3
-    row_z = 1 + (5 - axis) % 3
+    c1, c2, c3, row_x, row_y, row_z = pencil_order(axis)
     comps = (0, c1, c2, c3)
     NTOT = u.shape[1] * u.shape[2] * u.shape[3]
     U = u.reshape(4, NTOT)
@@ -117,18 +85,7 @@ def predict_pencils(u, axis, lay, sp, scheme, st, xc, zc, ext, use_ext, wrap, dt
         ia = p % width - ea
         ib = p // width - eb
         off = (ia + ga) * sa + (ib + gb) * sb
-        end = off + N * stride
-        s_rho = U[0, off:end:stride]
-        s_n = U[c1, off:end:stride]
-        s_t1 = U[c2, off:end:stride]
-        s_t2 = U[c3, off:end:stride]
-        for s in range(N):
-            rho = s_rho[s]
-            inv = 1.0 / rho
-            w0[s] = rho
-            w1[s] = s_n[s] * inv
-            w2[s] = s_t1[s] * inv
-            w3[s] = s_t2[s] * inv
+        gather_primitives(U, off, stride, c1, c2, c3, w0, w1, w2, w3)
         reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch)
         if method != DONOR:
             trace_pencil(w, wl, wr, lo - 1, hi + 1, cs, dtdx)
@@ -270,9 +227,7 @@ def transverse_pencils(u, dst, axis, lay, sp, scheme, ql, qr, fluxes, tslot, tst
     method, limiter, solver, cs = scheme
     n, g, stride, d, na, ga, sa, ea, nb, gb, sb, eb = pencil_frame(axis, lay, sp, ext_a, ext_b)
     dtdx = dt / d
-    c1 = 1 + axis
-    c2 = 1 + (axis + 1) % 3
-    c3 = 1 + (axis + 2) % 3
+    c1, c2, c3, _, _, _ = pencil_order(axis)
     comps = (0, c1, c2, c3)
     NTOT = u.shape[1] * u.shape[2] * u.shape[3]
     U = u.reshape(4, NTOT)
@@ -447,12 +402,7 @@ def final_rows(u, us, lay, sp, st, xc, zc, ext, use_ext, dt, cs, y_source, rates
             u1[i] = mx
             u2[i] = my
             u3[i] = rz
-            rate = cell_rate(rho1, mx, my, rz, lay, sp, cs)
-            if rate < 0.0:
-                if bad < 0:
-                    bad = (k * ny + j) * nx + i
-            elif rate > best:
-                best = rate
+            best, bad = fold_rate(cell_rate(rho1, mx, my, rz, lay, sp, cs), (k * ny + j) * nx + i, best, bad)
         y_source[r] = ysum
         rates[r] = best
         bads[r] = bad

@@ -50,8 +50,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_items, fill_ghost_lines, ghost_lines
-from .diagnostics import cell_rate, combine_rates
+from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
+from .diagnostics import cell_rate, combine_rates, fold_rate
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
 from .sweep import pencil_count, sweep_pencils
@@ -63,9 +63,6 @@ INTEGRATORS = {"vl2": 2, "rk2": 2, "rk3": 3, "ctu": 2}
 
 KEEP = -1  # reconstruction column: use the scheme's reconstruction
 
-#: 2D x-y boxes with at least this many cells along y remap their radial ghosts and fluxes in
-#: parallel (measured: ~3.5 ns per remapped value, ~2 us per parallel region)
-PARALLEL_REMAP_NY = 100
 
 
 def courant_limit(ndim: int, integrator: str = "vl2") -> float:
@@ -164,18 +161,8 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         weight = reals[s, 4]
         method = scheme[0] if ints[s, 3] < 0 else ints[s, 3]
         sch = (method, scheme[1], scheme[2], scheme[3])
-        # 1. ghost zones of the input state: axes z, y, x; the items of an axis in parallel
-        #    when there is enough work (3D, or the remapped radial ghosts of a large x-y box;
-        #    otherwise a parallel region costs more than the fill)
-        for back in range(3):
-            gaxis = 2 - back
-            nlines = ghost_lines(gaxis, lay, bc)
-            if nlines > 1 and (nz > 1 or (gaxis == 0 and shearing and ny >= PARALLEL_REMAP_NY)):
-                nchunk = min(nlines, nthreads)
-                for c in prange(nchunk):
-                    fill_ghost_lines(src, gaxis, c * nlines // nchunk, (c + 1) * nlines // nchunk, t_stage, lay, sp, bc)
-            elif nlines > 0:
-                fill_ghost_lines(src, gaxis, 0, nlines, t_stage, lay, sp, bc)
+        # 1. ghost zones of the input state (in parallel where there is enough work)
+        fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
         # 2. one sweep per active axis; the first one writes base, sources and ext
         first = True
         first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
@@ -197,18 +184,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
         #    step's net update, like the VL2 predictor: conservation needs only the others)
         if shearing and weight != 0.0:
-            plane_flux = np.zeros(nz)
-            nitems = 4 * nz
-            if nz > 1 or ny >= PARALLEL_REMAP_NY:
-                nchunk = min(nitems, nthreads)
-                for c in prange(nchunk):
-                    correct_radial_items(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, c * nitems // nchunk,
-                                         (c + 1) * nitems // nchunk, plane_flux)
-            else:
-                correct_radial_items(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, 0, nitems, plane_flux)
-            mass_flux = 0.0
-            for k in range(nz):
-                mass_flux += plane_flux[k]
+            mass_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, nthreads)
             budget[0] += weight * dt * mass_flux * sp.dy * sp.dz
         if open_z and weight != 0.0:  # mass flux F_z of the two faces: out is -F at the bottom, +F at the top
             lower = 0.0
@@ -241,9 +217,5 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
                     kk, jj, ii = lay.gz + k, lay.gy + j, lay.gx + i
                     r = cell_rate(u[0, kk, jj, ii], u[1, kk, jj, ii], u[2, kk, jj, ii], u[3, kk, jj, ii], lay, sp,
                                   scheme[3])
-                    if r < 0.0:
-                        if bad < 0:
-                            bad = (k * ny + j) * nx + i
-                    elif r > rate:
-                        rate = r
+                    rate, bad = fold_rate(r, (k * ny + j) * nx + i, rate, bad)
     return rate, bad

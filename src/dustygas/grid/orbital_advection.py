@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .diagnostics import cell_rate, combine_rates
+from .diagnostics import cell_rate, combine_rates, fold_rate
 from .remap import shift_column
 
 __all__ = ["orbital_advection", "remap_columns"]
@@ -63,13 +63,9 @@ def remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, cs, rates, ba
         best = 0.0
         bad = -1
         d, mx, my, mz = u[0, k, gy:gy + ny, i], u[1, k, gy:gy + ny, i], u[2, k, gy:gy + ny, i], u[3, k, gy:gy + ny, i]
+        first = (k - gz) * ny * nx + (i - gx)  # flat domain index of cell j: first + j nx
         for j in range(ny):
-            rate = cell_rate(d[j], mx[j], my[j], mz[j], lay, sp, cs)
-            if rate < 0.0:
-                if bad < 0:
-                    bad = ((k - gz) * ny + j) * nx + (i - gx)
-            elif rate > best:
-                best = rate
+            best, bad = fold_rate(cell_rate(d[j], mx[j], my[j], mz[j], lay, sp, cs), first + j * nx, best, bad)
         rates[item] = best
         bads[item] = bad
 

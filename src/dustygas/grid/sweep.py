@@ -31,12 +31,79 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .diagnostics import cell_rate
+from .diagnostics import cell_rate, fold_rate
 from .reconstruct import reconstruct_faces
 from .riemann import riemann_fluxes
 from .shearing_box import momentum_source
 
-__all__ = ["sweep_pencils", "pencil_count"]
+__all__ = ["sweep_pencils", "pencil_count", "pencil_frame", "pencil_order", "gather_primitives"]
+
+
+@njit(cache=True, error_model="numpy")
+def pencil_frame(axis, lay, sp, ext_a, ext_b):
+    """Geometry of the pencils along ``axis``: ``(n, g, stride, d, na, ga, sa, ea, nb, gb, sb, eb)``.
+
+    ``n, g, stride, d`` are the domain cells, ghosts per side, flat stride and cell size along
+    ``axis``; ``na, nb`` the domain cells of the two transverse axes (pencil order: ``(y, z)``
+    for x pencils, ``(x, z)`` for y, ``(x, y)`` for z), ``ga, gb`` their ghosts, ``sa, sb``
+    their strides and ``ea, eb`` the extra ghost layers covered on each side (``ext_a``,
+    ``ext_b`` where the axis is active, else 0). Pencil ``p`` sits at transverse domain indices
+    ``(p % (na + 2 ea) - ea, p // (na + 2 ea) - eb)`` and starts (first ghost cell) at the
+    flat index ``(ia + ga) sa + (ib + gb) sb``.
+    """
+    nx, ny, nz, gx, gy, gz = lay
+    NX = nx + 2 * gx
+    NY = ny + 2 * gy
+    if axis == 0:
+        n, g, stride, d = nx, gx, 1, sp.dx
+        na, ga, sa, nb, gb, sb = ny, gy, NX, nz, gz, NX * NY
+    elif axis == 1:
+        n, g, stride, d = ny, gy, NX, sp.dy
+        na, ga, sa, nb, gb, sb = nx, gx, 1, nz, gz, NX * NY
+    else:
+        n, g, stride, d = nz, gz, NX * NY, sp.dz
+        na, ga, sa, nb, gb, sb = nx, gx, 1, ny, gy, NX
+    ea = ext_a if na > 1 else 0
+    eb = ext_b if nb > 1 else 0
+    return n, g, stride, d, na, ga, sa, ea, nb, gb, sb, eb
+
+
+@njit(inline="always")
+def pencil_order(axis):
+    """The pencil order of ``axis``: ``(c1, c2, c3, row_x, row_y, row_z)``.
+
+    Pencil variables 1, 2, 3 are the velocity normal to the faces and the two transverse
+    ones, carried by the conserved components ``c1 = 1 + axis`` and ``c2, c3`` (the next two
+    axes, cyclically); ``row_x, row_y, row_z`` are the pencil variables (and flux rows) that
+    hold the x, y and z components.
+    """
+    return (1 + axis, 1 + (axis + 1) % 3, 1 + (axis + 2) % 3, 1 + (3 - axis) % 3, 1 + (4 - axis) % 3,
+            1 + (5 - axis) % 3)
+
+
+@njit(inline="always")
+def gather_primitives(U, off, stride, c1, c2, c3, w0, w1, w2, w3) -> None:
+    """Primitive variables of one pencil from the conserved state, in pencil order.
+
+    ``w0[s], w1[s], w2[s], w3[s] = rho, m_n / rho, m_t1 / rho, m_t2 / rho`` (``v = m / rho``,
+    thesis eq. 2.2's conserved variables ``(rho, rho v)``) for the ``N = w0.shape[0]`` cells
+    ``off + s stride`` of the flattened state ``U`` ``(4, NTOT)``; ``c1, c2, c3`` from
+    :func:`pencil_order`. Reads through views whose indices start at 0, so that numba drops
+    its negative-index handling; inlined into the pencil kernels.
+    """
+    N = w0.shape[0]
+    end = off + N * stride
+    s_rho = U[0, off:end:stride]
+    s_n = U[c1, off:end:stride]
+    s_t1 = U[c2, off:end:stride]
+    s_t2 = U[c3, off:end:stride]
+    for s in range(N):
+        rho = s_rho[s]
+        inv = 1.0 / rho
+        w0[s] = rho
+        w1[s] = s_n[s] * inv
+        w2[s] = s_t1[s] * inv
+        w3[s] = s_t2[s] * inv
 
 
 @njit(cache=True, error_model="numpy")
@@ -94,30 +161,13 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
     """
     method, limiter, solver, cs = scheme
     nx, ny, nz, gx, gy, gz = lay
-    NX = nx + 2 * gx
-    NY = ny + 2 * gy
-    NZ = nz + 2 * gz
-    if axis == 0:
-        n, g, stride, d = nx, gx, 1, sp.dx
-        na, ga, gb, sa, sb = ny, gy, gz, NX, NX * NY
-    elif axis == 1:
-        n, g, stride, d = ny, gy, NX, sp.dy
-        na, ga, gb, sa, sb = nx, gx, gz, 1, NX * NY
-    else:
-        n, g, stride, d = nz, gz, NX * NY, sp.dz
-        na, ga, gb, sa, sb = nx, gx, gy, 1, NX
+    NTOT = src.shape[1] * src.shape[2] * src.shape[3]
+    n, g, stride, d, na, ga, sa, _, _, gb, sb, _ = pencil_frame(axis, lay, sp, 0, 0)
     dtdx = dt / d
-    # conserved components carried by pencil variables 1, 2, 3 (normal, two transverse) and
-    # the pencil variable (flux row) holding each of x, y, z
-    c1 = 1 + axis
-    c2 = 1 + (axis + 1) % 3
-    c3 = 1 + (axis + 2) % 3
-    row_x = 1 + (3 - axis) % 3
-    row_y = 1 + (4 - axis) % 3
-    row_z = 1 + (5 - axis) % 3
-    S = src.reshape(4, NZ * NY * NX)
-    D = dst.reshape(4, NZ * NY * NX)
-    B = base.reshape(4, NZ * NY * NX)
+    c1, c2, c3, row_x, row_y, row_z = pencil_order(axis)
+    S = src.reshape(4, NTOT)
+    D = dst.reshape(4, NTOT)
+    B = base.reshape(4, NTOT)
     N = n + 2 * g
     lo, hi = g, g + n
     w = np.empty((4, N))
@@ -142,19 +192,7 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
         ia = p % na
         ib = p // na
         off = (ia + ga) * sa + (ib + gb) * sb
-        end = off + N * stride
-        # gather primitives along the pencil (views: all indices start at 0)
-        s_rho = S[0, off:end:stride]
-        s_n = S[c1, off:end:stride]
-        s_t1 = S[c2, off:end:stride]
-        s_t2 = S[c3, off:end:stride]
-        for s in range(N):
-            rho = s_rho[s]
-            inv = 1.0 / rho
-            w0[s] = rho
-            w1[s] = s_n[s] * inv
-            w2[s] = s_t1[s] * inv
-            w3[s] = s_t2[s] * inv
+        gather_primitives(S, off, stride, c1, c2, c3, w0, w1, w2, w3)
         reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch)
         riemann_fluxes(wl, wr, lo, hi, cs, solver, flux)
         if store_bflux:
@@ -238,19 +276,16 @@ def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_ed
             lo, hi = 1, n - 1
         elif ia == 0 or ia == nx - 1:  # a radial boundary column (ia is the x index)
             lo, hi = 0, 0
+    # flat domain index (k ny + j) nx + i of cell i of the pencil: first + i * step
+    if axis == 0:
+        first, step = (ib * ny + ia) * nx, 1
+    elif axis == 1:
+        first, step = ib * ny * nx + ia, nx
+    else:
+        first, step = ib * nx + ia, nx * ny
     best = 0.0
     bad = -1
     for i in range(lo, hi):
-        rate = cell_rate(d_rho[i], d_x[i], d_y[i], d_z[i], lay, sp, cs)
-        if rate < 0.0:
-            if bad < 0:
-                if axis == 0:
-                    bad = (ib * ny + ia) * nx + i
-                elif axis == 1:
-                    bad = (ib * ny + i) * nx + ia
-                else:
-                    bad = (i * ny + ib) * nx + ia
-        elif rate > best:
-            best = rate
+        best, bad = fold_rate(cell_rate(d_rho[i], d_x[i], d_y[i], d_z[i], lay, sp, cs), first + i * step, best, bad)
     rates[p] = best
     bads[p] = bad

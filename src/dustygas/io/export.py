@@ -137,16 +137,8 @@ def export_run(run: str | Path, fmt: str = "auto", output: str | Path | None = N
     rundir = RunDirectory(run)
     if not rundir.config_file.exists():
         raise UserError(f"{run}: not a run directory (no config.toml)")
-    files = rundir.snapshots()
-    if not files:
-        raise UserError(f"{run}: no snapshots to export")
-    chosen = files
-    if snapshots is not None:
-        chosen = []
-        for i in snapshots:
-            if not -len(files) <= i < len(files):
-                raise UserError(f"--snapshot {i}: the run has {len(files)} snapshots (0 .. {len(files) - 1})")
-            chosen.append(files[i])
+    files = rundir.require_snapshots(" to export")
+    chosen = files if snapshots is None else [rundir.snapshot_at(i) for i in snapshots]
     out = Path(output) if output is not None else rundir.path / "export"
     if out.exists() and not out.is_dir():
         raise UserError(f"--output {out}: exists and is not a directory")

@@ -207,13 +207,7 @@ class Run:
 
     def snapshot(self, index: int = -1) -> Any:
         """Snapshot ``index`` (position in :attr:`snapshot_files`; -1 the last) as a Dataset."""
-        files = self.snapshot_files
-        if not files:
-            raise UserError(f"{self.path}: no snapshots")
-        try:
-            return snapshot_dataset(files[index])
-        except IndexError:
-            raise UserError(f"{self.path}: snapshot {index} out of range (the run has {len(files)})") from None
+        return snapshot_dataset(self._dir.snapshot_at(index))
 
     def snapshots(self) -> Iterator[Any]:
         """Every snapshot as a Dataset, in order."""

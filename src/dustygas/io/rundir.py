@@ -134,6 +134,25 @@ class RunDirectory:
         files = [p for p in d.glob("snap_*.h5") if _SNAP.search(p.name)] if d.is_dir() else []
         return sorted(files, key=lambda p: int(_SNAP.search(p.name).group(1)))
 
+    def require_snapshots(self, purpose: str = "") -> list[Path]:
+        """:meth:`snapshots`, or a one-line :class:`~dustygas.errors.UserError` if the directory
+        does not exist or holds no snapshot (``purpose`` ends that message, e.g. ``" to export"``)."""
+        if not self.path.is_dir():
+            raise UserError(f"{self.path}: no such run directory")
+        files = self.snapshots()
+        if not files:
+            raise UserError(f"{self.path}: no snapshots{purpose}")
+        return files
+
+    def snapshot_at(self, index: int) -> Path:
+        """Snapshot ``index`` (position in :meth:`snapshots`, negative from the end), or a one-line
+        :class:`~dustygas.errors.UserError` naming the positions the run has."""
+        files = self.require_snapshots()
+        index, n = int(index), len(files)
+        if not -n <= index < n:
+            raise UserError(f"--snapshot {index}: the run has {n} snapshots (0 .. {n - 1}; negative from the end)")
+        return files[index]
+
     def checkpoints(self) -> list[Path]:
         """Checkpoint entries in index order (damaged ones included: see :mod:`dustygas.io.checkpoint`)."""
         d = self.path / "checkpoints"
@@ -230,10 +249,7 @@ class RunDirectory:
     # ----------------------------------------------------------------- readers
     def read_snapshot(self, index: int = -1) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         """Read snapshot ``index`` (position in the sorted list; -1 = last)."""
-        files = self.snapshots()
-        if not files:
-            raise UserError(f"{self.path}: no snapshots")
-        return read_h5(files[index])
+        return read_h5(self.snapshot_at(index))
 
     def read_history(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         if not self.history_file.exists():

@@ -83,7 +83,7 @@ import numpy as np
 from ..errors import UserError
 from ..physics import nsh_velocities_multi, steady_settling_velocity
 
-__all__ = ["StreamingParams", "DRAG_MODELS", "drag_code", "operator_matrix", "state_labels"]
+__all__ = ["StreamingParams", "DRAG_MODELS", "drag_code", "float_tuple", "operator_matrix", "state_labels"]
 
 #: drag linearisation name -> (gamma, beta) of the module docstring
 DRAG_MODELS: dict[str, tuple[float, float]] = {
@@ -104,12 +104,23 @@ def drag_code(name: str) -> int:
         raise UserError(f"unknown drag linearisation {name!r}: choose one of {', '.join(DRAG_MODELS)}") from None
 
 
-def _as_tuple(value, name: str) -> tuple[float, ...]:
-    arr = np.atleast_1d(np.asarray(value, dtype=np.float64))
-    if arr.ndim != 1 or arr.size == 0:
-        raise UserError(f"{name} must be a number or a non-empty list of numbers")
+def float_tuple(value, name: str) -> tuple[float, ...]:
+    """``value`` (a number or a 1D list of numbers) as a tuple of finite floats, or a one-line
+    :class:`~dustygas.errors.UserError` naming ``name`` and what is wrong.
+
+    >>> float_tuple([0.1, 1], "taus")
+    (0.1, 1.0)
+    """
+    try:
+        arr = np.atleast_1d(np.asarray(value, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise UserError(f"{name} = {value!r}: expected a number or a list of numbers") from None
+    if arr.ndim != 1:
+        raise UserError(f"{name}: expected a number or a 1D list of numbers")
+    if arr.size == 0:
+        raise UserError(f"{name} is empty: give at least one value")
     if not np.all(np.isfinite(arr)):
-        raise UserError(f"{name} = {value!r}: must be finite")
+        raise UserError(f"{name} = {value!r}: values must be finite")
     return tuple(float(v) for v in arr)
 
 
@@ -160,8 +171,8 @@ class StreamingParams:
 
     def __post_init__(self) -> None:
         multi = not np.isscalar(self.taus) or not np.isscalar(self.mu)
-        taus = _as_tuple(self.taus, "taus")
-        mu = _as_tuple(self.mu, "mu")
+        taus = float_tuple(self.taus, "taus")
+        mu = float_tuple(self.mu, "mu")
         if len(taus) == 1 and len(mu) > 1:
             taus = taus * len(mu)
         if len(mu) == 1 and len(taus) > 1:
@@ -188,7 +199,7 @@ class StreamingParams:
             if self.Pi == 0:
                 raise UserError("vz='settling' (thesis eq. 4.19, speed ~ c_s) needs Pi > 0")
         else:
-            vz = _as_tuple(self.vz, "vz")
+            vz = float_tuple(self.vz, "vz")
             if len(vz) not in (1, len(taus)):
                 raise UserError(f"vz has {len(vz)} entries for {len(taus)} species")
             object.__setattr__(self, "vz", vz[0] if len(vz) == 1 and np.isscalar(self.vz) else vz)

@@ -136,6 +136,17 @@ def _unit_k(theta_deg: float, kz_sign: int) -> np.ndarray:
     return np.array([math.sin(th), 0.0, kz_sign * math.cos(th)])
 
 
+def _drift_along_k(taus, mu, theta_deg, kz_sign, Pi, vz, drag):
+    """The set-up of the estimates along k̂: ``(beta, w, k̂, W = k̂·w)`` after checking the
+    parameters (``beta``: the drag model's density exponent, :data:`~dustygas.linear.operator.DRAG_MODELS`;
+    ``w``: :func:`relative_drift`)."""
+    _check(taus, mu, Pi, theta_deg, kz_sign)
+    beta = DRAG_MODELS[list(DRAG_MODELS)[drag_code(drag)]][1]
+    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
+    kh = _unit_k(theta_deg, kz_sign)
+    return beta, w, kh, float(kh @ w)
+
+
 def _adjugate3(a: np.ndarray) -> np.ndarray:
     c = np.empty((3, 3), dtype=a.dtype)
     for i in range(3):
@@ -195,11 +206,7 @@ def resonant_growth(
     >>> round(K, 2), round(s, 6)
     (53.06, 0.003945)
     """
-    _check(taus, mu, Pi, theta_deg, kz_sign)
-    beta = DRAG_MODELS[list(DRAG_MODELS)[drag_code(drag)]][1]
-    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
-    kh = _unit_k(theta_deg, kz_sign)
-    W = float(kh @ w)
+    beta, w, kh, W = _drift_along_k(taus, mu, theta_deg, kz_sign, Pi, vz, drag)
     if W == 0.0:
         return math.nan, math.nan
     if Pi == 0:
@@ -249,11 +256,7 @@ def large_k_growth(
     >>> [round(large_k_growth(taus=1.0, mu=0.1, theta_deg=30.0, kz_sign=-1, drag=d), 4) for d in ("consistent", "epstein")]
     [0.015, 0.0231]
     """
-    _check(taus, mu, Pi, theta_deg, kz_sign)
-    beta = DRAG_MODELS[list(DRAG_MODELS)[drag_code(drag)]][1]
-    w = relative_drift(taus=taus, mu=mu, Pi=Pi, vz=vz)
-    kh = _unit_k(theta_deg, kz_sign)
-    W = float(kh @ w)
+    beta, w, kh, W = _drift_along_k(taus, mu, theta_deg, kz_sign, Pi, vz, drag)
     c2 = math.inf if Pi == 0 else 1.0 / Pi**2
     if W == 0.0 or W * W == c2:
         return math.nan

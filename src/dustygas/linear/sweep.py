@@ -56,7 +56,7 @@ from .._version import __version__
 from ..errors import UserError
 from ..io.atomic import atomic_path
 from ..physics import nsh_velocities_multi
-from .operator import DRAG_MODELS, drag_code
+from .operator import DRAG_MODELS, drag_code, float_tuple
 from .shearing_wave import SHEAR_RATE
 from .sweep_kernel import INITIAL_STATES, RESULT_FIELDS, integrate_chunk
 
@@ -77,20 +77,6 @@ DESCRIPTIONS = {
     "dust_t": "|Sigma_d(t)|/|Sigma_d(0)| at the sample times",
     "energy_t": "sqrt(E(t)/E(0)) at the sample times",
 }
-
-
-def _floats(value, name: str) -> tuple[float, ...]:
-    try:
-        arr = np.atleast_1d(np.asarray(value, dtype=np.float64))
-    except (TypeError, ValueError):
-        raise UserError(f"{name} = {value!r}: expected a list of numbers") from None
-    if arr.ndim != 1:
-        raise UserError(f"{name}: expected a 1D list of numbers")
-    if arr.size == 0:
-        raise UserError(f"{name} is empty: give at least one value")
-    if not np.all(np.isfinite(arr)):
-        raise UserError(f"{name} = {value!r}: values must be finite")
-    return tuple(float(v) for v in arr)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -129,7 +115,7 @@ class SweepSpec:
 
     def __post_init__(self) -> None:
         for name in ("mu", "taus", "kx", "ky"):
-            object.__setattr__(self, name, _floats(getattr(self, name), name))
+            object.__setattr__(self, name, float_tuple(getattr(self, name), name))
         if min(self.mu) < 0:
             raise UserError(f"mu = {list(self.mu)}: dust-to-gas ratios must be >= 0")
         if min(self.taus) <= 0:

@@ -72,20 +72,11 @@ def history_figure(run: str | Path, columns: Sequence[str] | None = None) -> Any
     return fig
 
 
-def _snapshot_path(rundir: RunDirectory, index: int) -> Path:
-    files = rundir.snapshots()
-    if not files:
-        raise UserError(f"{rundir.path}: no snapshots")
-    if not -len(files) <= index < len(files):
-        raise UserError(f"--snapshot {index}: the run has {len(files)} snapshots (0 .. {len(files) - 1})")
-    return files[index]
-
-
 def plot_snapshot(run: str | Path, index: int = -1, field: str = "rho", kind: str = "slice",
                   axis: str | None = None, at: float | None = None, log: bool = False,
                   vmin: float | None = None, vmax: float | None = None, npix: int = 256) -> Any:
     """Figure of snapshot ``index`` of ``run`` (see :func:`dustygas.plot.maps.snapshot_figure`)."""
-    arrays, attrs = read_h5(_snapshot_path(_run(run), index))
+    arrays, attrs = read_h5(_run(run).snapshot_at(index))
     try:
         return snapshot_figure(arrays, attrs, field, kind, axis, at, log, vmin, vmax, npix)
     except ValueError as exc:

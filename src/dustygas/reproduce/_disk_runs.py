@@ -18,25 +18,12 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import UserError
+from ._runs import finished_run
 
 __all__ = ["disk_run", "ring_index", "padded", "ORBIT_20"]
 
 ORBIT_20 = 2.0 * np.pi * 20.0**1.5
 _PRESETS = {False: "drift-ring", True: "drift-ring-split"}
-
-
-def _finished(path: Path) -> bool:
-    from ..io.hdf5 import read_h5
-    from ..io.rundir import RunDirectory
-
-    rd = RunDirectory(path)
-    if not (rd.history_file.exists() and rd.config_file.exists()):
-        return False
-    from ..config import load_toml
-
-    tlim = float(load_toml(rd.config_file)["run"]["tlim"])
-    t = read_h5(rd.history_file)[0]["time"]
-    return t.size > 0 and float(t[-1]) >= tlim * (1 - 1e-12)
 
 
 def disk_run(split: bool, output: Path, quick: bool, runs: Sequence[str | Path] | None = None) -> Path:
@@ -50,22 +37,8 @@ def disk_run(split: bool, output: Path, quick: bool, runs: Sequence[str | Path] 
                 return Path(run)
         kind = "a split disk (split.enabled = true)" if split else "an unsplit disk with dust rings"
         raise UserError(f"--from: none of {', '.join(map(str, runs))} is a run of {kind}")
-    from ..api import restart, run as run_problem
-    from ..config import load_toml
-    from ..io.rundir import RunDirectory
-
     name = _PRESETS[split] + ("" if quick else "-thesis")
-    path = Path(output) / "runs" / name
-    if _finished(path):
-        return path
-    rd = RunDirectory(path)
-    resumable = rd.config_file.exists() and load_toml(rd.config_file).get("dustygas", {}).get("problem") == name \
-        and bool(rd.checkpoints())
-    result = restart(path) if resumable else run_problem(name, path, overwrite=True)
-    if result.status != "finished":  # stopped (signal, wall time): keep it for the next call to resume
-        raise UserError(f"{path}: the {name} run stopped ({result.status}) at time {result.engine.t:.6g}; "
-                        "run the figure again to continue it from its checkpoint")
-    return path
+    return finished_run(name, Path(output) / "runs" / name)
 
 
 def ring_index(run: str | Path, radius: float, taus: float) -> int:

@@ -41,24 +41,16 @@ def si3d_run(output: Path, run: Path | None = None, quick: bool = True) -> Path:
 
 
 def cached_run(problem: str, output: Path, run: Path | None, quick: bool, quick_set=()) -> Path:
-    """``run`` if given, else problem ``problem`` in ``output/runs/<problem>`` (``quick``: with the
-    overrides ``quick_set``, in ``output/runs/<problem>-quick``), run, or continued from its
-    checkpoint, if not finished."""
-    from .. import api
-    from ..io.rundir import RunDirectory
+    """``run`` if given, else the finished run of ``problem`` in ``output/runs/<problem>``
+    (``quick``: with the overrides ``quick_set``, in ``output/runs/<problem>-quick``), run, or
+    continued from its checkpoint, if not finished (:func:`~dustygas.reproduce._runs.finished_run`)."""
+    from ._runs import finished_run
 
     Path(output).mkdir(parents=True, exist_ok=True)
     if run is not None:
         return Path(run)
     path = Path(output) / "runs" / (f"{problem}-quick" if quick else problem)
-    rd = RunDirectory(path)
-    if rd.history_file.exists() and "finished:" in (rd.log_file.read_text() if rd.log_file.exists() else ""):
-        return path
-    if rd.checkpoints():
-        api.restart(path, progress=None)
-    else:
-        api.run(problem, output=path, overwrite=True, progress=None, set=tuple(quick_set) if quick else ())
-    return path
+    return finished_run(problem, path, quick_set if quick else (), progress=None)
 
 
 def _snaps(run: Path, which: list[float]):

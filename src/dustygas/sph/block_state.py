@@ -18,6 +18,7 @@ import numpy as np
 from ..errors import SimulationError
 from .active import NPACK
 from .active_search import DEAD
+from .engine import snapshot_attrs
 from .particles import ParticleSet, count_invalid
 
 __all__ = ["BlockState"]
@@ -116,11 +117,6 @@ class BlockState:
             f(self, out)
         return out
 
-    def _attrs(self) -> dict[str, Any]:
-        return {"ndim": self.box.ndim, "box_lo": list(self.box.lo), "box_hi": list(self.box.hi),
-                "periodic": [int(v) for v in self.box.periodic], "kernel": self.kernel.name,
-                "hfact": self.hfact, "eos_kind": self.eos.kind, "gamma": self.eos.gamma}
-
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         """The particles (arrays named as :meth:`dustygas.sph.SPHEngine.snapshot` names them) and their levels."""
         self.timestep()
@@ -128,7 +124,7 @@ class BlockState:
         arrays = {"pos": p.pos, "vel": p.vel, "mass": p.mass, "h": p.h, "rho": self.rho, "u": p.u, "P": self.P,
                   "alpha": p.alpha, "pid": p.pid, "ptype": p.ptype, "level": self.level}
         arrays.update({f"extra/{k}": v for k, v in p.extra.items()})
-        return {k: np.array(v) for k, v in arrays.items()}, self._attrs()
+        return {k: np.array(v) for k, v in arrays.items()}, snapshot_attrs(self)
 
     def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         arrays = {f"particles/{k}": np.array(v) for k, v in self.particles.arrays().items()}
@@ -136,7 +132,7 @@ class BlockState:
         arrays["block/_wake"] = self._wake.astype(np.int8)
         arrays["block/grad_v"] = self.grad_v.copy()
         arrays["accreted"] = self._accreted.copy()
-        attrs = {**self._attrs(), "started": int(self.started), "dt_block": self.dt_block, "updates": self.updates,
+        attrs = {**snapshot_attrs(self), "started": int(self.started), "dt_block": self.dt_block, "updates": self.updates,
                  "total_updates": self.total_updates, "substeps": self.substeps,
                  "options": str(asdict(self.options)), "steps": str(asdict(self.steps))}
         return arrays, attrs

@@ -53,12 +53,22 @@ from .modules import SPHModule
 from .particles import GAS, ParticleSet, count_invalid
 from .viscosity import cullen_dehnen_alpha, morris_monaghan_rate
 
-__all__ = ["SPHOptions", "SPHEngine"]
+__all__ = ["SPHOptions", "SPHEngine", "snapshot_attrs"]
 
 _DERIVED = ("rho", "omega", "P", "cs", "acc", "dudt", "divv", "curlv", "vsig", "dalpha", "phi", "fcorr")
 #: particles per chunk handed to a thread: dynamic scheduling keeps both cores busy when the
 #: machine is shared (a descheduled thread does not hold up the loop); results are unaffected.
 PARALLEL_CHUNK = 256
+
+
+def snapshot_attrs(engine) -> dict[str, Any]:
+    """The attributes every SPH snapshot and checkpoint carries: the box (``ndim``, ``box_lo``,
+    ``box_hi``, ``periodic``), the kernel, ``hfact`` and the equation of state of ``engine`` (an
+    :class:`SPHEngine` or a :class:`~dustygas.sph.timesteps.BlockStepEngine`)."""
+    box, eos = engine.box, engine.eos
+    return {"ndim": box.ndim, "box_lo": list(box.lo), "box_hi": list(box.hi),
+            "periodic": [int(v) for v in box.periodic], "kernel": engine.kernel.name,
+            "hfact": engine.hfact, "eos_kind": eos.kind, "gamma": eos.gamma}
 
 
 @dataclass(frozen=True)
@@ -420,25 +430,20 @@ class SPHEngine:
         """Log lines of the modules (warnings, events) since the last call; the run loop logs them."""
         return [line for module in self.modules for line in module.messages()]
 
-    def _attrs(self) -> dict[str, Any]:
-        return {"ndim": self.box.ndim, "box_lo": list(self.box.lo), "box_hi": list(self.box.hi),
-                "periodic": [int(v) for v in self.box.periodic], "kernel": self.kernel.name,
-                "hfact": self.hfact, "eos_kind": self.eos.kind, "gamma": self.eos.gamma}
-
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         self._ensure()
         p = self.particles
         arrays = {"pos": p.pos, "vel": p.vel, "mass": p.mass, "h": p.h, "rho": self.rho, "u": p.u,
                   "P": self.P, "alpha": p.alpha, "pid": p.pid, "ptype": p.ptype}
         arrays.update({f"extra/{k}": v for k, v in p.extra.items()})
-        return {k: np.array(v) for k, v in arrays.items()}, self._attrs()
+        return {k: np.array(v) for k, v in arrays.items()}, snapshot_attrs(self)
 
     def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         arrays = {f"particles/{k}": np.array(v) for k, v in self.particles.arrays().items()}
         arrays.update({f"derived/{name}": np.array(getattr(self, name)) for name in _DERIVED})
         arrays["accreted_momentum"] = self.accreted_momentum.copy()
         arrays["accreted_angular_momentum"] = self.accreted_angular_momentum.copy()
-        attrs = {**self._attrs(), "accreted_mass": self.accreted_mass, "derivatives_valid": int(self._valid),
+        attrs = {**snapshot_attrs(self), "accreted_mass": self.accreted_mass, "derivatives_valid": int(self._valid),
                  "options": str(asdict(self.options))}
         for module in self.modules:
             attrs.update({f"module_{module.name}_{k}": v for k, v in module.state().items()})
