@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from .kdtree import leaves_in_reach
 from .pairs import gather_candidates, minimum_image
 
 __all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
@@ -80,47 +81,6 @@ def leaf_of_particles(order, start, end, child, n):
     return leaf, leaves
 
 
-@njit(inline="always")
-def _gap2(qlo, qhi, lo, hi, node, length, periodic):
-    """Squared distance between the query box and a node's box (minimum image where periodic)."""
-    g2 = 0.0
-    for d in range(3):
-        ca = 0.5 * (qlo[d] + qhi[d])
-        cb = 0.5 * (lo[node, d] + hi[node, d])
-        sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
-        gap = sep - 0.5 * (qhi[d] - qlo[d]) - 0.5 * (hi[node, d] - lo[node, d])
-        if gap > 0.0:
-            g2 += gap * gap
-    return g2
-
-
-@njit(cache=True)
-def _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out, stack):
-    """Leaves within reach of the query box (written to ``out`` while there is room); returns the
-    number of particles they hold and the number of leaves. ``stack``: scratch for 128 nodes."""
-    stack[0] = 0
-    top = 1
-    total = 0
-    nl = 0
-    while top > 0:
-        top -= 1
-        node = stack[top]
-        reach = max(qh, hmax[node])
-        if _gap2(qlo, qhi, lo, hi, node, length, periodic) >= r2 * reach * reach:
-            continue
-        c = child[node]
-        if c >= 0:
-            stack[top] = c
-            stack[top + 1] = c + 1
-            top += 2
-            continue
-        if nl < out.shape[0]:
-            out[nl] = node
-        nl += 1
-        total += end[node] - start[node]
-    return total, nl
-
-
 #: groups of at least this many active particles gather their candidates into contiguous arrays first
 GATHER_MIN = 4
 #: groups per parallel chunk (each chunk allocates its scratch arrays once)
@@ -180,10 +140,10 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
                     qlo[d] = min(qlo[d], pos[a, d])
                     qhi[d] = max(qhi[d], pos[a, d])
                 qh = max(qh, h_query[i])
-            m, nl = _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
+            m, nl = leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
             if nl > nodes.shape[0]:
                 nodes = np.empty(2 * nl, np.int64)
-                _walk(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
+                leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
             gathered = s1 - s0 >= GATHER_MIN
             if gathered:
                 if m > cap:

@@ -101,44 +101,55 @@ def build_tree(pos, h, ndim, leaf_size):
     return order, start[:count], end[:count], child[:count], lo[:count], hi[:count], hmax[:count]
 
 
-@njit(cache=True)
-def _box_gap2(alo, ahi, blo, bhi, length, periodic):
-    """Squared distance between two boxes (minimum image along periodic dimensions)."""
+@njit(inline="always")
+def node_gap2(qlo, qhi, lo, hi, node, length, periodic):
+    """Squared distance between the query box ``[qlo, qhi]`` and the box ``[lo[node], hi[node]]`` of a
+    tree node: the gap between the boxes along each axis (0 where they overlap), minimum image along
+    periodic axes."""
     g2 = 0.0
     for d in range(3):
-        ca = 0.5 * (alo[d] + ahi[d])
-        cb = 0.5 * (blo[d] + bhi[d])
+        ca = 0.5 * (qlo[d] + qhi[d])
+        cb = 0.5 * (lo[node, d] + hi[node, d])
         sep = abs(minimum_image(ca - cb, length[d], periodic[d]))
-        gap = sep - 0.5 * (ahi[d] - alo[d]) - 0.5 * (bhi[d] - blo[d])
+        gap = sep - 0.5 * (qhi[d] - qlo[d]) - 0.5 * (hi[node, d] - lo[node, d])
         if gap > 0.0:
             g2 += gap * gap
     return g2
 
 
 @njit(cache=True)
-def _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, out):
-    """Leaves of the source tree within reach of query leaf ``leaf``: written to ``out`` (when
-    given room), returns how many particles they hold and how many leaves."""
-    top = 1
+def leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, out, stack):
+    """The leaves of a tree that particles of the query box ``[qlo, qhi]`` may reach.
+
+    A node is opened unless its box stays farther from the query box than
+    :math:`R\\max(h_q, h^{\\rm node}_{\\max})` (``r2`` = :math:`R^2`, ``qh`` = :math:`h_q` the largest
+    query smoothing length), so every pair with :math:`r_{ab} < R\\max(h_a, h_b)` lies in the
+    leaves found. ``(lo, hi, hmax, child, start, end)`` are the node arrays of :func:`build_tree`
+    (or refitted ones). The leaves are written to ``out`` while there is room (call again with a
+    larger ``out`` when the returned count exceeds it); ``stack`` is scratch for 128 nodes. Returns
+    the number of particles the leaves hold and the number of leaves.
+    """
     stack[0] = 0
+    top = 1
     total = 0
-    nleaves = 0
+    nl = 0
     while top > 0:
         top -= 1
         node = stack[top]
-        reach = max(qhmax[leaf], shmax[node])
-        if _box_gap2(qlo[leaf], qhi[leaf], slo[node], shi[node], length, periodic) >= r2 * reach * reach:
+        reach = max(qh, hmax[node])
+        if node_gap2(qlo, qhi, lo, hi, node, length, periodic) >= r2 * reach * reach:
             continue
-        if schild[node] >= 0:
-            stack[top] = schild[node]
-            stack[top + 1] = schild[node] + 1
+        c = child[node]
+        if c >= 0:
+            stack[top] = c
+            stack[top + 1] = c + 1
             top += 2
             continue
-        if nleaves < out.shape[0]:
-            out[nleaves] = node
-        nleaves += 1
-        total += send[node] - sstart[node]
-    return total, nleaves
+        if nl < out.shape[0]:
+            out[nl] = node
+        nl += 1
+        total += end[node] - start[node]
+    return total, nl
 
 
 @njit(parallel=True, cache=True)
@@ -158,10 +169,12 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
         leaf = leaves[il]
         stack = np.empty(128, np.int64)
         nodes = np.empty(64, np.int64)
-        m, nl = _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+        m, nl = leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send,
+                                length, periodic, r2, nodes, stack)
         if nl > nodes.shape[0]:
             nodes = np.empty(nl, np.int64)
-            _walk(leaf, qlo, qhi, qhmax, slo, shi, shmax, schild, sstart, send, length, periodic, r2, stack, nodes)
+            leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send,
+                            length, periodic, r2, nodes, stack)
         px, py, pz, ph2, pid, d2 = candidate_buffers(m)
         gather_candidates(nodes, nl, sstart, send, sorder, spos, sh, px, py, pz, ph2, pid)
         for k in range(qstart[leaf], qend[leaf]):
