@@ -1,0 +1,44 @@
+"""How this process was launched, without importing MPI unless it must.
+
+``mpiexec`` (MPICH's Hydra, Open MPI, Slurm's PMI) puts the rank and the world size into the
+environment of every process it starts; a plain ``python`` or ``dustygas`` run has none of them,
+so a one-process run never loads :mod:`mpi4py` (nor the MPI library behind it).
+"""
+
+from __future__ import annotations
+
+import os
+
+__all__ = ["launched_under_mpi", "rank_and_size", "world"]
+
+#: (rank variable, size variable) of the launchers we know
+_LAUNCHER_VARIABLES = (
+    ("PMI_RANK", "PMI_SIZE"),  # MPICH Hydra, Intel MPI
+    ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),  # Open MPI
+    ("PMIX_RANK", "PMIX_SIZE"),
+)
+
+
+def rank_and_size() -> tuple[int, int]:
+    """``(rank, size)`` from the launcher's environment; ``(0, 1)`` for a plain process.
+
+    >>> import os
+    >>> rank_and_size() if "PMI_RANK" not in os.environ else (0, 1)
+    (0, 1)
+    """
+    for rank_var, size_var in _LAUNCHER_VARIABLES:
+        if rank_var in os.environ and size_var in os.environ:
+            return int(os.environ[rank_var]), int(os.environ[size_var])
+    return 0, 1
+
+
+def launched_under_mpi() -> bool:
+    """True when a launcher started this process as one of several ranks."""
+    return rank_and_size()[1] > 1
+
+
+def world():
+    """``MPI.COMM_WORLD`` (imports :mod:`mpi4py` on the first call)."""
+    from mpi4py import MPI
+
+    return MPI.COMM_WORLD
