@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["launched_under_mpi", "rank_and_size", "world"]
+__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer"]
 
 #: (rank variable, size variable) of the launchers we know
 _LAUNCHER_VARIABLES = (
@@ -42,3 +42,27 @@ def world():
     from mpi4py import MPI
 
     return MPI.COMM_WORLD
+
+
+def agreed(action):
+    """``action()`` on every rank; a :class:`~dustygas.errors.UserError` on any rank is raised on
+    all of them (the first in rank order), so that no rank goes on into a collective step that
+    the others have left. Without MPI: just ``action()``."""
+    if not launched_under_mpi():
+        return action()
+    from ..errors import UserError
+
+    try:
+        result, message = action(), None
+    except UserError as exc:
+        result, message = None, str(exc)
+    messages = world().allgather(message)
+    first = next((m for m in messages if m is not None), None)
+    if first is not None:
+        raise UserError(first)
+    return result
+
+
+def is_writer() -> bool:
+    """Whether this process writes the run's files (rank 0, or a plain process)."""
+    return rank_and_size()[0] == 0

@@ -47,6 +47,8 @@ class DistributedGridEngine:
     """
 
     work_label = "zone-cycles"
+    #: the run loop's sign that this engine spans the ranks (rank 0 writes, decisions are agreed)
+    distributed = True
 
     def __init__(self, mesh: Mesh, comm=None, layout: tuple[int, int, int] | None = None, **engine_options: Any):
         if comm is None:
@@ -123,6 +125,16 @@ class DistributedGridEngine:
             self.whole.t, self.whole.cycle = self.local.t, self.local.cycle
 
     # ------------------------------------------------------------------ run-loop protocol
+    def agree(self, decisions: tuple) -> tuple:
+        """The per-rank run-loop decisions (signal number, checkpoint-by-wall-clock, out of
+        wall time) combined over the ranks: the largest signal number, and a flag set on any
+        rank is set on all (collective)."""
+        from mpi4py import MPI
+
+        combined = np.zeros(len(decisions), dtype=np.int64)
+        self.comm.Allreduce(np.array([int(d) for d in decisions], dtype=np.int64), combined, op=MPI.MAX)
+        return (int(combined[0]),) + tuple(bool(c) for c in combined[1:])
+
     def timestep(self) -> float:
         """The serial time step: ``cfl / max`` over all blocks of the Courant rate."""
         from mpi4py import MPI
