@@ -42,14 +42,14 @@ def initial(mesh: Mesh) -> tuple[np.ndarray, ...]:
     return rho, vx, vy, vz
 
 
-def main() -> None:
-    case, steps, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+def run(case: str, steps: int, layout: tuple[int, int, int] | None = None) -> dict | None:
+    """``steps`` steps of ``case``; the final primitive fields and the history rows (None on
+    ranks other than 0)."""
     spec = CASES[case]
     mesh = Mesh(spec["shape"], spec["size"])
     if launched_under_mpi():
         from dustygas.parallel.gas import DistributedGridEngine
 
-        layout = tuple(int(p) for p in sys.argv[4:7]) if len(sys.argv) > 4 else None
         engine = DistributedGridEngine(mesh, layout=layout, **spec["options"])
     else:
         engine = GridEngine(mesh, **spec["options"])
@@ -59,10 +59,19 @@ def main() -> None:
         engine.advance(engine.timestep())
         rows.append(engine.history())
     arrays, _ = engine.snapshot()
-    if arrays:
-        names = sorted(rows[0])
-        np.savez(out, history=np.array([[r[n] for n in names] for r in rows]), names=np.array(names),
-                 t=engine.t, **{k: v for k, v in arrays.items() if k in ("rho", "vx", "vy", "vz")})
+    if not arrays:
+        return None
+    names = sorted(rows[0])
+    return dict(history=np.array([[r[n] for n in names] for r in rows]), names=np.array(names), t=engine.t,
+                **{k: v for k, v in arrays.items() if k in ("rho", "vx", "vy", "vz")})
+
+
+def main() -> None:
+    case, steps, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    layout = tuple(int(p) for p in sys.argv[4:7]) if len(sys.argv) > 4 else None
+    result = run(case, steps, layout)
+    if result is not None:
+        np.savez(out, **result)
 
 
 if __name__ == "__main__":
