@@ -1,6 +1,7 @@
 """``mpiexec -n N dustygas run``: one set of files identical to the serial run's, checkpoints that
 restart on another rank count, and one-line refusals (exit 2) of what MPI cannot run."""
 
+import os
 import shutil
 import subprocess
 import sys
@@ -15,7 +16,7 @@ SOUND = ["soundwave-3d", "--set", "grid.nx=12", "--set", "grid.ny=12", "--set", 
 
 def serial(args, cwd):
     proc = subprocess.run([sys.executable, "-m", "dustygas", "run", *args], cwd=cwd, capture_output=True, text=True,
-                          env={**__import__("os").environ, "NUMBA_NUM_THREADS": "1"})
+                          env={**os.environ, "NUMBA_NUM_THREADS": "1"})
     assert proc.returncode == 0, proc.stderr[-2000:]
 
 
@@ -39,7 +40,7 @@ def test_two_ranks_write_the_serial_files_and_restart_on_one_and_four(mpirun, tm
 
 
 @pytest.mark.parametrize("nranks, args, message", [
-    (5, ["soundwave-2d"], "mpi ranks=5: the 64 x 64 x 1 mesh has no layout of 5 equal blocks"),
+    (3, ["soundwave-2d"], "mpi ranks=3: the 64 x 64 x 1 mesh has no layout of 3 equal blocks"),
     pytest.param(2, ["shearing-wave"], "x not split (shear-periodic x boundaries)", marks=pytest.mark.slow),
     pytest.param(2, ["dustybox-grid"], "problem dustybox-grid does not run on several MPI ranks yet",
                  marks=pytest.mark.slow),
@@ -51,3 +52,19 @@ def test_bad_mpi_use_is_one_line_exit_2(nranks, args, message, mpirun, tmp_path)
     assert len(lines) == 1 and message in lines[0], proc.stderr[-2000:]
     assert "Traceback" not in proc.stderr
     assert not (tmp_path / "bad").exists()  # nothing written
+
+
+def test_info_shows_ranks_and_threads(mpirun, tmp_path):
+    proc = mpirun(2, "-m", "dustygas", "info", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    rows = [line for line in proc.stdout.splitlines() if line.startswith("MPI ranks")]
+    assert rows == [rows[0]] and "2, 1 numba thread(s) each" in rows[0]  # printed once, by rank 0
+
+
+def test_one_process_run_never_imports_mpi(tmp_path):
+    code = ("import sys, dustygas.api as api; api.run('soundwave', output='r', set=['run.tlim=0.05']); "
+            "print('mpi4py' in sys.modules)")
+    proc = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True,
+                          env={**os.environ, "NUMBA_NUM_THREADS": "1"})
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert proc.stdout.split() == ["False"]
