@@ -44,7 +44,7 @@ from .config import load_toml, restart_config
 from .errors import UserError
 from .io.checkpoint import newest_checkpoint
 from .io.rundir import RunDirectory, check_output_path, default_run_path
-from .parallel.comm import agreed
+from .parallel.comm import agreed, check_ranks
 from .parallel.rundir import run_directory
 from .preflight import build_engine, check_cadence, check_memory
 from .problems import get_problem as _get_problem
@@ -118,6 +118,7 @@ def run(
     rundir = run_directory(path)  # under MPI: rank 0 writes, the other ranks only read
 
     def prepare():
+        check_ranks(prob)
         rundir.check_new(overwrite)
         check_memory(prob, cfg)
         return build_engine(prob, cfg)
@@ -175,6 +176,7 @@ def restart(
                        f"(time={float(attrs['engine_t']):.6g})")
             print(f"dustygas: {message}", file=sys.stderr, flush=True)
             rundir.log(message)
+        check_ranks(prob)
         check_memory(prob, cfg)
         engine = build_engine(prob, cfg)
     except BaseException:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer"]
+__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer", "check_ranks"]
 
 #: (rank variable, size variable) of the launchers we know
 _LAUNCHER_VARIABLES = (
@@ -66,3 +66,12 @@ def agreed(action):
 def is_writer() -> bool:
     """Whether this process writes the run's files (rank 0, or a plain process)."""
     return rank_and_size()[0] == 0
+
+
+def check_ranks(problem) -> None:
+    """Refuse (one line) to run a problem on several ranks whose engine does not decompose."""
+    if launched_under_mpi() and not getattr(problem, "runs_on_ranks", False):
+        from ..errors import UserError
+
+        raise UserError(f"problem {problem.name} does not run on several MPI ranks yet "
+                        "(gas-only grid problems do): run it with one process")

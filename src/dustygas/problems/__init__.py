@@ -45,6 +45,9 @@ class Problem:
     #: defaults are still validated in full, and it runs with these overrides. Empty (the rule):
     #: the test runs the defaults themselves.
     smoke_overrides: ClassVar[tuple[str, ...]] = ()
+    #: whether ``build`` makes an engine that runs on several MPI ranks (``mpiexec -n N``);
+    #: the others are refused with one line before anything is built
+    runs_on_ranks: ClassVar[bool] = False
 
     def validate(self, cfg: Config) -> None:
         """Cross-parameter checks; raise :class:`~dustygas.errors.ConfigError` on failure."""
