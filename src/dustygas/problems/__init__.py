@@ -48,9 +48,18 @@ class Problem:
     #: whether ``build`` makes an engine that runs on several MPI ranks (``mpiexec -n N``);
     #: the others are refused with one line before anything is built
     runs_on_ranks: ClassVar[bool] = False
+    #: problems whose checkpoints this one may start from (``dustygas run NAME --from RUN``,
+    #: :mod:`dustygas.branch`): their physics plus this problem's own, switched on later
+    branches_from: ClassVar[tuple[str, ...]] = ()
 
     def validate(self, cfg: Config) -> None:
         """Cross-parameter checks; raise :class:`~dustygas.errors.ConfigError` on failure."""
+
+    def check_branch(self, cfg: Config, t: float) -> None:
+        """Refuse (:class:`~dustygas.errors.ConfigError`) a branch at time ``t`` from a
+        :attr:`branches_from` run if this problem's own physics would already have acted by then."""
+        if self.branches_from:
+            raise NotImplementedError(f"{self.name} lists branches_from but does not check a branch")
 
     def build(self, cfg: Config) -> Any:
         """Return an engine holding the initial state for ``cfg``."""
