@@ -44,6 +44,8 @@ from .config import load_toml, restart_config
 from .errors import UserError
 from .io.checkpoint import newest_checkpoint
 from .io.rundir import RunDirectory, check_output_path, default_run_path
+from .parallel.comm import agreed, check_ranks
+from .parallel.rundir import run_directory
 from .preflight import build_engine, check_cadence, check_memory
 from .problems import get_problem as _get_problem
 from .problems import problem_names as _problem_names
@@ -113,10 +115,16 @@ def run(
     cfg = prob.config(config, overrides, data)
     check_cadence(cfg.run)
     path = check_output_path(output) if output is not None else default_run_path(problem)
-    RunDirectory(path).check_new(overwrite)
-    check_memory(prob, cfg)
-    engine = build_engine(prob, cfg)
-    return run_engine(engine, cfg, path, overwrite=overwrite, progress=progress)
+    rundir = run_directory(path)  # under MPI: rank 0 writes, the other ranks only read
+
+    def prepare():
+        check_ranks(prob)
+        rundir.check_new(overwrite)
+        check_memory(prob, cfg)
+        return build_engine(prob, cfg)
+
+    engine = agreed(prepare)
+    return run_engine(engine, cfg, rundir, overwrite=overwrite, progress=progress)
 
 
 def restart(
@@ -133,7 +141,7 @@ def restart(
     truncation) is skipped with a warning for the one before it. ``run.walltime`` is not
     inherited: give ``walltime`` (``--walltime``) again for each continuation.
     """
-    rundir = RunDirectory(path)
+    rundir = run_directory(path)
     if not str(path).strip() or not rundir.path.is_dir():
         raise UserError(f"{path}: no such run directory")
     if not rundir.config_file.is_file():
@@ -143,7 +151,7 @@ def restart(
     if not isinstance(name, str):
         raise UserError(f"{rundir.config_file}: no [dustygas] problem name")
     prob = _get_problem(name)
-    rundir.lock()  # from here on no other process writes the directory
+    agreed(rundir.lock)  # from here on no other process writes the directory
     try:
         found = newest_checkpoint(rundir, problem=name, required=CHECKPOINT_ATTRS)
         attrs = found.attrs
@@ -168,6 +176,7 @@ def restart(
                        f"(time={float(attrs['engine_t']):.6g})")
             print(f"dustygas: {message}", file=sys.stderr, flush=True)
             rundir.log(message)
+        check_ranks(prob)
         check_memory(prob, cfg)
         engine = build_engine(prob, cfg)
     except BaseException:

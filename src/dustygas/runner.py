@@ -63,8 +63,9 @@ import numpy as np
 
 from ._version import __version__
 from .config import Config, Param, dump_toml
-from .errors import EXIT_WALLTIME, OutputError, SimulationError
+from .errors import EXIT_WALLTIME, OutputError, SimulationError, UserError
 from .io.rundir import RunDirectory
+from .parallel.comm import agreed, launched_under_mpi
 from .threads import ThreadControl
 
 __all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine", "config_text", "CHECKPOINT_ATTRS"]
@@ -341,6 +342,7 @@ class RunLoop:
                        bar_format="{l_bar}{bar}| t={n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
         work = 0.0
         step_wall = 0.0
+        agree = getattr(eng, "agree", None)  # several ranks: combine the per-rank decisions
         with _StopFlag() as stop:
             try:
                 while eng.t < tlim * (1 - 1e-14):
@@ -373,9 +375,11 @@ class RunLoop:
                         bar.update(0)
                     elif self.progress_lines and eng.cycle % run.log_every == 0:
                         print(f"cycle={eng.cycle} time={eng.t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
-                    want_ckpt = eng.t >= s.next_checkpoint or (
-                        run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
-                    )
+                    wall_ckpt = run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
+                    out_of_time = run.walltime > 0 and (now - start_wall) + 2 * step_wall >= run.walltime
+                    if agree is not None:  # every rank takes the same wall-clock and signal decisions
+                        stop.signum, wall_ckpt, out_of_time = agree((stop.signum, wall_ckpt, out_of_time))
+                    want_ckpt = eng.t >= s.next_checkpoint or wall_ckpt
                     s.next_checkpoint = _next_time(s.next_checkpoint, run.dt_checkpoint, eng.t)
                     if want_ckpt and eng.t < tlim * (1 - 1e-14):
                         self.write_checkpoint()
@@ -385,7 +389,7 @@ class RunLoop:
                     if stop.signum:
                         status = "signal"
                         break
-                    if run.walltime > 0 and (time.perf_counter() - start_wall) + 2 * step_wall >= run.walltime:
+                    if out_of_time:
                         status = "walltime"
                         break
                 if status == "finished" and s.last_snapshot_time < eng.t:
@@ -473,10 +477,13 @@ def run_engine(
     the run returns or raises.
     """
     rundir = path if isinstance(path, RunDirectory) else RunDirectory(path)
+    if launched_under_mpi() and not getattr(engine, "distributed", False):
+        raise UserError(f"problem {cfg.problem_name} does not run on several MPI ranks yet "
+                        "(gas-only grid problems do): run it with one process")
     loop = RunLoop(engine, cfg, rundir, progress)
     try:
         if restart_from is None:
-            rundir.create(overwrite)
+            agreed(lambda: rundir.create(overwrite))
             rundir.write_config(config_text(cfg))
             rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
             _log_takeover(rundir)

@@ -52,6 +52,14 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _say(line: str) -> None:
+    """An error line on stderr, once per run: from rank 0 only under MPI (every rank has it)."""
+    from ..parallel.comm import is_writer
+
+    if is_writer():
+        print(line, file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``dustygas`` and ``python -m dustygas``; returns the exit status."""
     try:
@@ -62,16 +70,26 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
         return int(args._module.main(args) or 0)
     except UserError as exc:
-        print(f"dustygas: error: {exc}", file=sys.stderr)
+        _say(f"dustygas: error: {exc}")
         return exc.exit_code
     except SimulationError as exc:
-        print(f"dustygas: simulation stopped: {exc}", file=sys.stderr)
+        _say(f"dustygas: simulation stopped: {exc}")
         return exc.exit_code
     except OutputError as exc:
-        print(f"dustygas: output failed: {exc}", file=sys.stderr)
+        _say(f"dustygas: output failed: {exc}")
         return exc.exit_code
     except KeyboardInterrupt:
         print("dustygas: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:
         return 0
+    except BaseException:
+        from ..parallel.comm import launched_under_mpi, world
+
+        if not launched_under_mpi():
+            raise
+        import traceback
+
+        traceback.print_exc()  # an unexpected error on one rank: stop every rank, do not hang them
+        world().Abort(1)
+        raise

@@ -52,6 +52,13 @@ def main(args: argparse.Namespace) -> int:
         mpi = "not available (pip install 'dustygas[mpi]')"
     rows.append(("MPI", mpi))
     rows.append(("mpiexec", shutil.which("mpiexec") or "not found"))
+    from ..parallel.comm import rank_and_size
+
+    rank, size = rank_and_size()
+    rows.append(("MPI ranks", f"{size}, {numba.get_num_threads()} numba thread(s) each" if size > 1 else
+                 "1 (not launched by mpiexec; gas-only grid problems run on N ranks with mpiexec -n N)"))
+    if rank != 0:  # under mpiexec: rank 0 speaks for the run
+        return 0
     width = max(len(k) for k, _ in rows)
     for key, value in rows:
         print(f"{key:<{width}}  {value}")

@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from ..errors import EXIT_WALLTIME, UserError
+from ..parallel.comm import is_writer
 
 HELP = "run a registered problem (dustygas problems lists them) or restart a run"
 DESCRIPTION = f"""Run a registered problem into a run directory.
@@ -80,6 +81,8 @@ def main(args: argparse.Namespace) -> int:
                 raise UserError("run: give a problem name (see: dustygas problems) or --restart DIR")
             result = api.run(args.problem, output=args.output, config=args.config, set=overrides,
                              overwrite=args.overwrite, walltime=args.walltime, progress=progress)
+    if not is_writer():  # under MPI: rank 0 reports
+        return result.exit_code
     label = result.work_label or "updates"
     print(
         f"{result.status}: {result.path}  time={result.engine.t:.6g}  cycles={result.cycles}  "

@@ -29,6 +29,9 @@ hydrostatic
     not in (``v_z`` set to zero when it points inwards) rectifies the vertical oscillations of
     a turbulent layer into a steady outflow (a settling dust layer in a box of ±0.15 H lost
     12 % of its gas in 3 Ω⁻¹ that way, 0.4 % with the symmetric copy).
+neighbour
+    (internal code only, set per face by :mod:`dustygas.parallel`) the face borders another
+    block: its ghosts are left alone here, the halo exchange fills them before the stage.
 
 Ghosts are filled axis by axis, z, y, then x, each over the full extent of the other two
 axes, so edges and corners are right too (the particle module's TSC weights need them).
@@ -54,13 +57,15 @@ from .remap import shift_column
 from .shearing_box import shear_offset
 
 __all__ = [
-    "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
+    "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "NEIGHBOUR", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
     "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY", "FIELD_PERIODIC", "FIELD_SHEAR",
     "FIELD_MIRROR", "field_ghost_kinds", "fill_field_ghosts",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
+#: a face whose ghosts another block provides (not a name users choose)
+NEIGHBOUR = 5
 #: name -> code of the boundary kinds
 BOUNDARY_KINDS = {"periodic": PERIODIC, "shear-periodic": SHEAR_PERIODIC, "outflow": OUTFLOW,
                   "reflecting": REFLECTING, "hydrostatic": HYDROSTATIC}
@@ -143,6 +148,8 @@ def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
     flip = 1 + axis  # momentum component normal to this axis
     for side in range(2):
         kind = kind_lo if side == 0 else kind_hi
+        if kind == NEIGHBOUR:
+            continue
         for m in range(g):
             dst = g - 1 - m if side == 0 else g + n + m
             src = _source_index(kind, side == 0, m, n, g)

@@ -19,6 +19,7 @@ from __future__ import annotations
 from ..config import Config, Limit, Param
 from ..errors import ConfigError
 from .boundaries import BOUNDARY_KINDS
+from ..parallel.comm import launched_under_mpi
 from .engine import GridEngine
 from .integrator import INTEGRATORS, courant_limit
 from .mesh import Mesh
@@ -89,7 +90,10 @@ def engine_from_config(cfg: Config) -> GridEngine:
     if kinds[0] == "shear-periodic" and sb.get("omega", 0.0) == 0.0:
         raise ConfigError("boundary.x = 'shear-periodic' needs a rotating frame: set shearing_box.omega > 0")
     mesh = Mesh((g.nx, g.ny, g.nz), (g.lx, g.ly, g.lz))
-    return GridEngine(
-        mesh, cs=cs, integrator=s.integrator, reconstruction=s.reconstruction, limiter=s.limiter,
-        riemann=s.riemann, cfl=s.cfl, boundaries=kinds, **sb,
-    )
+    options = dict(cs=cs, integrator=s.integrator, reconstruction=s.reconstruction, limiter=s.limiter,
+                   riemann=s.riemann, cfl=s.cfl, boundaries=kinds, **sb)
+    if launched_under_mpi():  # one block per rank (mpi4py is imported only here)
+        from ..parallel.gas import DistributedGridEngine
+
+        return DistributedGridEngine(mesh, **options)  # type: ignore[return-value]
+    return GridEngine(mesh, **options)

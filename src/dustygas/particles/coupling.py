@@ -146,6 +146,9 @@ class ParticleGridEngine:
         rho_ref: float = 1.0,
         smooth: bool = True,
     ):
+        if getattr(gas, "distributed", False):
+            raise SetupError("particles do not run on several MPI ranks yet (gas-only grid problems do): "
+                             "run this problem with one process")
         if gas.scheme_names["integrator"] not in GAS_INTEGRATORS:
             raise SetupError(f"particles need the {' or '.join(GAS_INTEGRATORS)} gas integrator, "
                              f"not {gas.scheme_names['integrator']}")

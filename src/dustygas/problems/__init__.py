@@ -45,6 +45,9 @@ class Problem:
     #: defaults are still validated in full, and it runs with these overrides. Empty (the rule):
     #: the test runs the defaults themselves.
     smoke_overrides: ClassVar[tuple[str, ...]] = ()
+    #: whether ``build`` makes an engine that runs on several MPI ranks (``mpiexec -n N``);
+    #: the others are refused with one line before anything is built
+    runs_on_ranks: ClassVar[bool] = False
     #: problems whose checkpoints this one may start from (``dustygas run NAME --from RUN``,
     #: :mod:`dustygas.branch`): their physics plus this problem's own, switched on later
     branches_from: ClassVar[tuple[str, ...]] = ()

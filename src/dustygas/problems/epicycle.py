@@ -25,6 +25,7 @@ __all__ = ["Epicycle"]
 
 @register
 class Epicycle(Problem):
+    runs_on_ranks = True  # gas only: engine_from_config decomposes the mesh under mpiexec
     name = "epicycle"
     summary = "Uniform epicyclic oscillation in a 2D shearing box (frequency kappa = Omega for q = 3/2)."
     schema = {

@@ -51,6 +51,7 @@ def shearing_wave_fields(mesh: Mesh, t: float, kx0: float, ky: float, amplitude:
 
 @register
 class ShearingWave(Problem):
+    runs_on_ranks = True  # gas only: engine_from_config decomposes the mesh under mpiexec
     name = "shearing-wave"
     summary = "Nearly incompressible vortical shearing wave through its swing (Kelvin's closed form)."
     schema = {

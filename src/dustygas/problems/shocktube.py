@@ -21,6 +21,7 @@ __all__ = ["ShockTube"]
 
 @register
 class ShockTube(Problem):
+    runs_on_ranks = True  # gas only: engine_from_config decomposes the mesh under mpiexec
     name = "shocktube"
     summary = "Isothermal shock tube along x (rarefaction + shock); exact Riemann solution for comparison."
     schema = {

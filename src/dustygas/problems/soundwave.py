@@ -29,6 +29,7 @@ def wave_vector(waves, box) -> np.ndarray:
 
 @register
 class SoundWave(Problem):
+    runs_on_ranks = True  # gas only: engine_from_config decomposes the mesh under mpiexec
     name = "soundwave"
     summary = "Linear isothermal sound wave in a periodic box (1D, or oblique in 2D/3D); exact solution."
     schema = {

@@ -1,0 +1,77 @@
+"""How this process was launched, without importing MPI unless it must.
+
+``mpiexec`` (MPICH's Hydra, Open MPI, Slurm's PMI) puts the rank and the world size into the
+environment of every process it starts; a plain ``python`` or ``dustygas`` run has none of them,
+so a one-process run never loads :mod:`mpi4py` (nor the MPI library behind it).
+"""
+
+from __future__ import annotations
+
+import os
+
+__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer", "check_ranks"]
+
+#: (rank variable, size variable) of the launchers we know
+_LAUNCHER_VARIABLES = (
+    ("PMI_RANK", "PMI_SIZE"),  # MPICH Hydra, Intel MPI
+    ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),  # Open MPI
+    ("PMIX_RANK", "PMIX_SIZE"),
+)
+
+
+def rank_and_size() -> tuple[int, int]:
+    """``(rank, size)`` from the launcher's environment; ``(0, 1)`` for a plain process.
+
+    >>> import os
+    >>> rank_and_size() if "PMI_RANK" not in os.environ else (0, 1)
+    (0, 1)
+    """
+    for rank_var, size_var in _LAUNCHER_VARIABLES:
+        if rank_var in os.environ and size_var in os.environ:
+            return int(os.environ[rank_var]), int(os.environ[size_var])
+    return 0, 1
+
+
+def launched_under_mpi() -> bool:
+    """True when a launcher started this process as one of several ranks."""
+    return rank_and_size()[1] > 1
+
+
+def world():
+    """``MPI.COMM_WORLD`` (imports :mod:`mpi4py` on the first call)."""
+    from mpi4py import MPI
+
+    return MPI.COMM_WORLD
+
+
+def agreed(action):
+    """``action()`` on every rank; a :class:`~dustygas.errors.UserError` on any rank is raised on
+    all of them (the first in rank order), so that no rank goes on into a collective step that
+    the others have left. Without MPI: just ``action()``."""
+    if not launched_under_mpi():
+        return action()
+    from ..errors import UserError
+
+    try:
+        result, message = action(), None
+    except UserError as exc:
+        result, message = None, str(exc)
+    messages = world().allgather(message)
+    first = next((m for m in messages if m is not None), None)
+    if first is not None:
+        raise UserError(first)
+    return result
+
+
+def is_writer() -> bool:
+    """Whether this process writes the run's files (rank 0, or a plain process)."""
+    return rank_and_size()[0] == 0
+
+
+def check_ranks(problem) -> None:
+    """Refuse (one line) to run a problem on several ranks whose engine does not decompose."""
+    if launched_under_mpi() and not getattr(problem, "runs_on_ranks", False):
+        from ..errors import UserError
+
+        raise UserError(f"problem {problem.name} does not run on several MPI ranks yet "
+                        "(gas-only grid problems do): run it with one process")
