@@ -67,7 +67,7 @@ from .deposit import filter_field, image_values, pull_deposit, sort_images
 from .diagnostics import MODE_FIELDS, gas_mode, particle_mode, species_statistics
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
-from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, explicit_drag_source, kick,
+from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
                    occupied_rows, shear_frame_forces, stencil, trajectory_columns)
 from .store import ParticleStore, first_nonfinite, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
@@ -228,6 +228,8 @@ class ParticleGridEngine:
         self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
         gx2, gy2, gz2 = self._g2
         self._dep2 = np.zeros((nz + 2 * gz2, ny + 2 * gy2, nx + 2 * gx2, 3))
+        #: the ghost widths of the deposit targets as the int64 arrays the kernels take
+        self._ghost_arrays = {g: np.array(g, dtype=np.int64) for g in ((0, 0, 0), self._g2)}
         self._dep1 = np.zeros((nz, ny, nx, 4 * self.nspecies))
         self._rho_p = np.zeros((nz, ny, nx, self.nspecies))
         self._mesh_field = np.zeros((3, nz, ny, nx))
@@ -342,12 +344,13 @@ class ParticleGridEngine:
         return dt
 
     # ------------------------------------------------------------------ the passes
-    def _exchange(self, t: float) -> None:
-        """The exchange step at time ``t`` (particle boundaries; removes outflowing particles)."""
+    def _exchange(self, t: float, half_dt: float = 0.0) -> None:
+        """The exchange step at time ``t`` (particle boundaries; removes outflowing particles),
+        after a drift by ``half_dt`` if not 0."""
         p = self.particles
         pos, vel, species, pid, mass = p.buffers()
         shift = self.geometry.shear_offset(t)
-        count = apply_boundaries(pos, vel, p.n, self._lay, self._sp, self._pb, shift, self._leaving)
+        count = apply_boundaries(pos, vel, p.n, self._lay, self._sp, self._pb, shift, self._leaving, half_dt)
         if count:
             flags = self._leaving[:p.n]
             for face in range(6):
@@ -401,10 +404,10 @@ class ParticleGridEngine:
         """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``."""
         m = self._images
         nv = values.shape[1]
-        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv])
+        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv], cols,
+                     self._img_col)
         img_col = self._img_col
-        img_col[:m] = cols[self._img_src[:m]]
-        pull_deposit(out, np.array(g, dtype=np.int64), self._lay, self._reach, self._R, self._cell_start, self._keys,
+        pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
                      self._img_val[:, :nv], img_col)
 
@@ -439,8 +442,7 @@ class ParticleGridEngine:
         t = gas.t
         pos, vel, species, pid, mass = p.buffers()
         # 1. drift, exchange, sort, weights, images at x^{n+1/2}
-        drift(pos, vel, p.n, 0.5 * h, self._active)
-        self._exchange(t + 0.5 * h)
+        self._exchange(t + 0.5 * h, 0.5 * h)
         self._prepare(t + 0.5 * h)
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
@@ -490,7 +492,7 @@ class ParticleGridEngine:
             self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
             self._fill_and_filter(self._dep2, self._g2, t_half, rows)
-            copy_domain(self._dep2, np.array(self._g2, dtype=np.int64), self._source, 1.0)
+            copy_domain(self._dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True
         # 6. gas corrector
         if use_ext:
@@ -677,8 +679,9 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     values = (m_[:n] / mesh.cell_volume).reshape(n, 1).copy()
     cols = np.zeros(n, dtype=np.int64)
     img_val = np.zeros((max(m, 1), 1))
-    image_values(m, img_src, img_dvy, values, -1, 0, img_val)
+    img_col = np.zeros(max(m, 1), dtype=np.int64)
+    image_values(m, img_src, img_dvy, values, -1, 0, img_val, cols, img_col)
     out = np.zeros((nz, ny, nx, 1))
     pull_deposit(out, np.zeros(3, dtype=np.int64), lay, reach, R, cell_start, keys, wts, values, cols, row_start,
-                 img_cell, img_w, img_val, np.zeros(max(m, 1), dtype=np.int64))
+                 img_cell, img_w, img_val, img_col)
     return out[..., 0]
