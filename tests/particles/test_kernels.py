@@ -14,7 +14,7 @@ import pytest
 from _threads import assert_identical, results_at_threads
 
 from dustygas.grid import Mesh
-from dustygas.particles.coupling import deposit_density
+from dustygas.particles.density import deposit_density
 from dustygas.particles.interp import KERNEL_REACH, KERNEL_WIDTH, KERNELS, TSC, TSC_C, axis_weights, cell_weights
 from dustygas.particles.store import ParticleStore, sort_by_cell
 
