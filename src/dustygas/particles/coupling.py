@@ -66,9 +66,9 @@ from .deposit import filter_field, image_values, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
-                   occupied_rows, shear_frame_forces, stencil, trajectory_columns)
+                   occupied_rows, shear_frame_forces, trajectory_columns)
 from .outputs import CoupledOutputs
-from .store import ParticleStore, first_nonfinite, sort_by_cell
+from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
 __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_density"]
@@ -352,10 +352,11 @@ class ParticleGridEngine(CoupledOutputs):
             self._allocate(p.capacity)
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
-        self._check_finite()
-        sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys, self._order_work,
-                     self._ptr, self._cell_start, self._fwork, self._iwork)
-        stencil(pos, n, self._lay, self._sp, self._off, self._order, self._R, self._wts)
+        bad = sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys,
+                           self._order_work, self._ptr, self._cell_start, self._fwork, self._iwork, self._order, self._R,
+                           self._wts)
+        if bad >= 0:
+            self._stop_nonfinite(bad)
         shift = self.geometry.shear_offset(t)
         args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
                 self._cell_start)
@@ -368,13 +369,10 @@ class ParticleGridEngine(CoupledOutputs):
                     self._img_row_start)
         self._images = m
 
-    def _check_finite(self) -> None:
-        """Stop (:class:`~dustygas.errors.SimulationError`, naming the particle and the field) if
-        a particle's position or velocity is not finite."""
+    def _stop_nonfinite(self, bad: int) -> None:
+        """Stop (:class:`~dustygas.errors.SimulationError`, naming the particle and the field):
+        particle ``bad`` has a position or velocity that is not finite."""
         p = self.particles
-        bad = first_nonfinite(p.pos, p.vel, p.n)
-        if bad < 0:
-            return
         values = {f"{name}": float(p.pos[a, bad]) for a, name in enumerate("xyz")}
         values.update({f"v{name}": float(p.vel[a, bad]) for a, name in enumerate("xyz")})
         fields = [f"{k}={v:.6g}" for k, v in values.items() if not np.isfinite(v)]

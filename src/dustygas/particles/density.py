@@ -12,7 +12,6 @@ import numpy as np
 from .boundaries import build_images, make_particle_boundaries
 from .deposit import image_values, pull_deposit, sort_images
 from .interp import KERNEL_REACH, KERNELS
-from .push import stencil
 from .store import ParticleStore, sort_by_cell
 
 __all__ = ["deposit_density"]
@@ -39,10 +38,9 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     keys = np.zeros(n, dtype=np.int64)
     cell_start = np.zeros(ncell + 1, dtype=np.int64)
     p_, v_, s_, i_, m_ = store.buffers()
-    sort_by_cell(p_, v_, s_, i_, m_, n, lay, sp, off, keys, np.zeros(n, dtype=np.int64), np.zeros(ncell, dtype=np.int64),
-                 cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
     wts = np.zeros((n, 3, 2 * R + 1))
-    stencil(p_, n, lay, sp, off, order, R, wts)
+    sort_by_cell(p_, v_, s_, i_, m_, n, lay, sp, off, keys, np.zeros(n, dtype=np.int64), np.zeros(ncell, dtype=np.int64),
+                 cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64), order, R, wts)
     args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
     cap = max(16, n // 2)
     while True:

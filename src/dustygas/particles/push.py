@@ -1,7 +1,6 @@
 """The compiled particle passes of a coupled step (see :mod:`dustygas.particles.coupling` for the
 order in which the engine calls them and :mod:`dustygas.particles.drag` for the drag).
 
-* :func:`stencil` -- each sorted particle's cell and weights (:mod:`dustygas.particles.interp`);
 * :func:`dust_values` -- what a particle deposits for the local drag problem (its mass and
   momentum per unit volume, in its species' columns) or for a density field;
 * :func:`cell_trajectories` -- the local drag problem of every domain cell: the gas velocity
@@ -20,10 +19,9 @@ from numba import njit, prange
 
 from .drag import (FIXED, MAX_SPECIES, N_COEF, cell_model_decay, one_species_mode, one_species_response, relax_row,
                    step_coefficients, step_decay, stopping_time)
-from .interp import stencil_into
 from .terms import ForceTable, frame_acceleration
 
-__all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "stencil", "dust_values",
+__all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "dust_values",
            "cell_trajectories", "explicit_drag_source", "kick", "copy_domain", "occupied_rows",
            "shear_frame_forces"]
 
@@ -43,18 +41,6 @@ def trajectory_columns(nspecies: int, need_rho: bool, mesh: bool) -> tuple[int, 
     c_mesh = n if mesh else -1
     n += 3 if mesh else 0
     return n, c_rho, c_mesh
-
-
-@njit(cache=True, parallel=True, error_model="numpy")
-def stencil(pos, n, lay, sp, off, order, R, wts) -> None:
-    """Weights ``wts[p, axis, 0 .. 2R]`` of the sorted particles around their cells."""
-    ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
-    nchunk = min(max(n, 1), PARTICLE_CHUNKS)
-    for c in prange(nchunk):
-        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
-            stencil_into(pos[0, p], sp.x0, ix, off.i0, lay.nx, order, R, wts, p, 0)
-            stencil_into(pos[1, p], sp.y0, iy, off.j0, lay.ny, order, R, wts, p, 1)
-            stencil_into(pos[2, p], sp.z0, iz, off.k0, lay.nz, order, R, wts, p, 2)
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
