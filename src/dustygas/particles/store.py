@@ -178,9 +178,10 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
     ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
     ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
-    pass, one copy-back pass). The histogram and its prefix sum are serial (``O(N + ncell)``); computing the
-    keys (and, when the order holds, the weights in the same pass), permuting the arrays and
-    ordering each cell by ``pid`` run in parallel.
+    pass, one copy-back pass that also weighs the particles; when the order holds, as at most steps
+    in 2D, a pass of its own). The histogram and its prefix sum are serial (``O(N + ncell)``);
+    computing the keys, the weights, permuting the arrays and ordering each cell by ``pid`` run in
+    parallel.
     """
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     ncell = nx * ny * nz
@@ -202,10 +203,6 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
             j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
             k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
             keys[p] = (k * ny + j) * nx + i
-            # the weights now (right if the order holds, as it does at most steps)
-            stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
-            stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
-            stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
     for c in range(nchunk):
         if first_bad[c] >= 0:
             return first_bad[c]
@@ -221,6 +218,11 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
             ordered = False
             break
     if ordered:
+        for c in prange(nchunk):
+            for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+                stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
+                stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
+                stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
         return -1
     # stable placement: order[slot] = old index
     for c in range(ncell):
