@@ -14,9 +14,13 @@ and the gas cells with the gas's. The dust mass is ``Z`` times the gas column
 
 Presets
 -------
-``si3d`` (default, a laptop: about 45 minutes on two cores to the non-linear state)
+``si3d`` (default, a laptop)
     thesis Fig 4.7 physics -- ``τ_s = 1``, ``Z = 0.03``, ``Π = 0.05``, box ``0.2 × 0.2 × 0.3 H`` --
-    at 32 × 32 × 48 cells and one particle per cell.
+    at 32 × 32 × 48 cells and one particle per cell, for 30 orbits. The layer settles and turns
+    non-linear within two orbits (largest dust density 30-100 ``ρ_g0``, 12-40 times the mean
+    midplane density, from orbit 1 on), but in the first 12 orbits its scale height still swings
+    between 0.006 and 0.03 H and the dominant Fourier mode of ``Σ_d`` is the axisymmetric
+    ``k_x = 2π/L_x`` (measured 2026-12-02).
 ``si3d-thesis``
     exactly thesis Fig 4.7: 256 × 256 × 384 cells, 1.8e7 particles (``dustygas run si3d-thesis
     --dry-run`` prints its memory and cost).

@@ -7,6 +7,8 @@ streaming instability, and at ``gravity.t_on`` the particles' self-gravity switc
 2007, Nature 448, 1022; Simon et al. 2016, ApJ 822, 55): filaments denser than the Hill density
 ``ρ_H = 9/G̃`` (code units) collapse into bound clumps, which ``dustygas analyze clumps RUN``
 catalogues and ``dustygas reproduce planetesimal-mass-function --from RUN`` fits.
+``dustygas run si3d-selfgravity --from RUN`` starts it from the newest checkpoint of an ``si3d``
+run written before ``gravity.t_on`` (:mod:`dustygas.branch`) instead of recomputing those orbits.
 
 Defaults: ``G̃ = 0.5`` (``ρ_H = 18 ρ_g0``: at this resolution the filaments of the laptop box
 reach a few tens of ``ρ_g0``, not the hundreds of the thesis's 256³ box, so the gravity is
@@ -50,6 +52,13 @@ class SI3DSelfGravity(SI3D):
               "run": with_defaults(SI3D.schema["run"], tlim=8 * ORBIT, dt_snapshot=ORBIT / 4),
               "gravity": GRAVITY}
     smoke_overrides = ("grid.nx=16", "grid.ny=16", "grid.nz=24", "gravity.t_on=0")
+    branches_from = ("si3d",)
+
+    def check_branch(self, cfg, t: float) -> None:
+        if cfg.gravity.t_on < t:
+            raise ConfigError(f"gravity.t_on = {cfg.gravity.t_on:g} is before the checkpoint's time {t:g}: the "
+                              "branch would differ from a run from t = 0; branch from an earlier checkpoint or "
+                              "raise gravity.t_on")
 
     def validate(self, cfg) -> None:
         super().validate(cfg)
