@@ -14,7 +14,7 @@ import pytest
 from _threads import assert_identical, results_at_threads
 
 from dustygas.grid import Mesh
-from dustygas.particles.coupling import deposit_density
+from dustygas.particles.density import deposit_density
 from dustygas.particles.interp import KERNEL_REACH, KERNEL_WIDTH, KERNELS, TSC, TSC_C, axis_weights, cell_weights
 from dustygas.particles.store import ParticleStore, sort_by_cell
 
@@ -96,8 +96,14 @@ def test_canonical_order_depends_only_on_positions_and_ids():
         p, v, s, i, m = store.buffers()
         keys = np.zeros(n, dtype=np.int64)
         start = np.zeros(31, dtype=np.int64)
-        sort_by_cell(p, v, s, i, m, n, mesh.layout, mesh.spacing, mesh.offsets, keys, np.zeros(n, dtype=np.int64),
-                     np.zeros(30, dtype=np.int64), start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
+        wts = np.zeros((n, 3, 3))
+        bad = sort_by_cell(p, v, s, i, m, n, mesh.layout, mesh.spacing, mesh.offsets, keys, np.zeros(n, dtype=np.int64),
+                           np.zeros(30, dtype=np.int64), start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64),
+                           KERNELS["tsc"], 1, wts)
+        assert bad == -1
+        # the TSC weights of the sorted particles along x (6 cells on [-0.5, 0.5)): each sums to one
+        np.testing.assert_allclose(wts[:n, 0].sum(axis=1), 1.0, rtol=0, atol=1e-15)
+        np.testing.assert_array_equal(wts[:n, 1], np.tile([0.0, 1.0, 0.0], (n, 1)))  # y inactive
         cell = np.floor((store.pos[2] + 0.5) * 5).astype(int) * 6 + np.floor((store.pos[0] + 0.5) * 6).astype(int)
         np.testing.assert_array_equal(keys[:n], cell)
         assert np.all(np.diff(cell) >= 0)

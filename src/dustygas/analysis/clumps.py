@@ -4,7 +4,7 @@
 box that is shear-periodic in x, periodic in y (and optionally in z):
 
 1. **Density.** The particle mass is deposited on the mesh with the drag's assignment
-   function (TSC; :func:`dustygas.particles.push.deposit_density`, shear-periodic images
+   function (TSC; :func:`dustygas.particles.density.deposit_density`, shear-periodic images
    included): the density the self-gravity solver sees, resolved as the simulation resolves it.
 2. **Peaks (HOP on cells).** Every cell above the threshold (default the Hill density
    ``ρ_H = 9Ω²/(4πG)``, :func:`~dustygas.physics.gravity.hill_density`) points to the densest
@@ -108,7 +108,7 @@ def mesh_density(pos: np.ndarray, mass: np.ndarray, *, cells: tuple[int, int, in
     """Particle density ``(nz, ny, nx)`` by TSC on the mesh of ``cells`` filling ``box`` (centred
     on the origin), with shear-periodic radial images if ``shear``."""
     from ..grid import Mesh
-    from ..particles.coupling import deposit_density
+    from ..particles.density import deposit_density
 
     (nx, ny, nz), (lx, ly, lz) = cells, box
     lx, ly, lz = (v if n > 1 else 1.0 for v, n in ((lx, nx), (ly, ny), (lz, nz)))

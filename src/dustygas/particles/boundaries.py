@@ -120,18 +120,23 @@ def _reflect(v: float, lo: float, length: float):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def apply_boundaries(pos, vel, n, lay, sp, pb, y_shift, leaving) -> int:
+def apply_boundaries(pos, vel, n, lay, sp, pb, y_shift, leaving, half_dt=0.0) -> int:
     """The exchange step for particles ``0 .. n-1`` after a drift (module docstring).
 
     ``y_shift``: the shear offset ``s_y`` at the time of the positions. Periodic, shear-periodic
     and reflecting particles are mapped back in place; a particle leaving through an outflow
     face gets ``leaving[p] = 1 + 2 axis + side`` (side 1: upper face), all others 0. Returns the
-    number leaving (the caller accounts and removes them).
+    number leaving (the caller accounts and removes them). ``half_dt != 0``: first the drift
+    ``x += half_dt v`` along the active axes, in the same pass.
     """
     count = 0
     kinds = (pb.x, pb.y, pb.z)
     nn = (lay.nx, lay.ny, lay.nz)
     for p in prange(n):
+        if half_dt != 0.0:
+            for a in range(3):
+                if nn[a] > 1:
+                    pos[a, p] += half_dt * vel[a, p]
         flag = 0
         for a in range(3):
             if nn[a] == 1:

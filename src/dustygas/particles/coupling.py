@@ -53,28 +53,25 @@ the Colella & Sekora (2008) limiter (the classic CW84 limiter: -6.2 %).
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import Sequence
 
-import numba
 import numpy as np
 
-from ..errors import SetupError, SimulationError, UserError
+from ..errors import SetupError, SimulationError
 from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
-from ..grid.mesh import cell_average_factor
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
+from .density import deposit_density
 from .deposit import filter_field, image_values, pull_deposit, sort_images
-from .diagnostics import MODE_FIELDS, gas_mode, particle_mode, species_statistics
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
-from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, drift, dust_values, explicit_drag_source, kick,
-                   occupied_rows, shear_frame_forces, stencil, trajectory_columns)
-from .store import ParticleStore, first_nonfinite, sort_by_cell
+from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
+                   occupied_rows, shear_frame_forces, trajectory_columns)
+from .outputs import CoupledOutputs
+from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
 __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_density"]
-
-FACES = ("x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper")
 
 #: gas integrators the coupling supports: its drag is predicted and corrected with the two
 #: stages of VL2 or CTU, both of which give U^{n+1/2} (Bai & Stone 2010a, §2.3); the
@@ -82,7 +79,7 @@ FACES = ("x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper")
 GAS_INTEGRATORS = ("vl2", "ctu")
 
 
-class ParticleGridEngine:
+class ParticleGridEngine(CoupledOutputs):
     """A two-stage gas engine (VL2) with Lagrangian dust particles (module docstring).
 
     Parameters
@@ -231,6 +228,8 @@ class ParticleGridEngine:
         self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
         gx2, gy2, gz2 = self._g2
         self._dep2 = np.zeros((nz + 2 * gz2, ny + 2 * gy2, nx + 2 * gx2, 3))
+        #: the ghost widths of the deposit targets as the int64 arrays the kernels take
+        self._ghost_arrays = {g: np.array(g, dtype=np.int64) for g in ((0, 0, 0), self._g2)}
         self._dep1 = np.zeros((nz, ny, nx, 4 * self.nspecies))
         self._rho_p = np.zeros((nz, ny, nx, self.nspecies))
         self._mesh_field = np.zeros((3, nz, ny, nx))
@@ -299,19 +298,6 @@ class ParticleGridEngine:
             if pos[axis].min() < lo or pos[axis].max() >= lo + length:
                 raise SetupError(f"particle positions along {'xyz'[axis]} must lie in [{lo:g}, {lo + length:g})")
 
-    def _mode_setup(self) -> None:
-        if self.mode is None:
-            return
-        geom = self.geometry
-        k = np.array([2 * np.pi * m / length if n > 1 else 0.0 for m, length, n in zip(self.mode, geom.box, geom.shape)])
-        if not np.any(k):
-            raise SetupError(f"mode {self.mode}: give a non-zero mode number along an active axis")
-        self._k = k
-        x, y, z = self.mesh.meshgrid()
-        self._phase = np.exp(-1j * (k[0] * x + k[1] * y + k[2] * z)) * np.ones(tuple(reversed(self.mesh.shape)))
-        self._cell_factor = cell_average_factor(k, geom.dx)
-        self._xc = x
-
     # ------------------------------------------------------------------ time
     @property
     def t(self) -> float:
@@ -345,12 +331,13 @@ class ParticleGridEngine:
         return dt
 
     # ------------------------------------------------------------------ the passes
-    def _exchange(self, t: float) -> None:
-        """The exchange step at time ``t`` (particle boundaries; removes outflowing particles)."""
+    def _exchange(self, t: float, half_dt: float = 0.0) -> None:
+        """The exchange step at time ``t`` (particle boundaries; removes outflowing particles),
+        after a drift by ``half_dt`` if not 0."""
         p = self.particles
         pos, vel, species, pid, mass = p.buffers()
         shift = self.geometry.shear_offset(t)
-        count = apply_boundaries(pos, vel, p.n, self._lay, self._sp, self._pb, shift, self._leaving)
+        count = apply_boundaries(pos, vel, p.n, self._lay, self._sp, self._pb, shift, self._leaving, half_dt)
         if count:
             flags = self._leaving[:p.n]
             for face in range(6):
@@ -368,10 +355,11 @@ class ParticleGridEngine:
             self._allocate(p.capacity)
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
-        self._check_finite()
-        sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys, self._order_work,
-                     self._ptr, self._cell_start, self._fwork, self._iwork)
-        stencil(pos, n, self._lay, self._sp, self._off, self._order, self._R, self._wts)
+        bad = sort_by_cell(pos, vel, species, pid, mass, n, self._lay, self._sp, self._off, self._keys,
+                           self._order_work, self._ptr, self._cell_start, self._fwork, self._iwork, self._order, self._R,
+                           self._wts)
+        if bad >= 0:
+            self._stop_nonfinite(bad)
         shift = self.geometry.shear_offset(t)
         args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
                 self._cell_start)
@@ -384,13 +372,10 @@ class ParticleGridEngine:
                     self._img_row_start)
         self._images = m
 
-    def _check_finite(self) -> None:
-        """Stop (:class:`~dustygas.errors.SimulationError`, naming the particle and the field) if
-        a particle's position or velocity is not finite."""
+    def _stop_nonfinite(self, bad: int) -> None:
+        """Stop (:class:`~dustygas.errors.SimulationError`, naming the particle and the field):
+        particle ``bad`` has a position or velocity that is not finite."""
         p = self.particles
-        bad = first_nonfinite(p.pos, p.vel, p.n)
-        if bad < 0:
-            return
         values = {f"{name}": float(p.pos[a, bad]) for a, name in enumerate("xyz")}
         values.update({f"v{name}": float(p.vel[a, bad]) for a, name in enumerate("xyz")})
         fields = [f"{k}={v:.6g}" for k, v in values.items() if not np.isfinite(v)]
@@ -404,10 +389,10 @@ class ParticleGridEngine:
         """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``."""
         m = self._images
         nv = values.shape[1]
-        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv])
+        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv], cols,
+                     self._img_col)
         img_col = self._img_col
-        img_col[:m] = cols[self._img_src[:m]]
-        pull_deposit(out, np.array(g, dtype=np.int64), self._lay, self._reach, self._R, self._cell_start, self._keys,
+        pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
                      self._img_val[:, :nv], img_col)
 
@@ -442,8 +427,7 @@ class ParticleGridEngine:
         t = gas.t
         pos, vel, species, pid, mass = p.buffers()
         # 1. drift, exchange, sort, weights, images at x^{n+1/2}
-        drift(pos, vel, p.n, 0.5 * h, self._active)
-        self._exchange(t + 0.5 * h)
+        self._exchange(t + 0.5 * h, 0.5 * h)
         self._prepare(t + 0.5 * h)
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
@@ -493,7 +477,7 @@ class ParticleGridEngine:
             self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
             self._fill_and_filter(self._dep2, self._g2, t_half, rows)
-            copy_domain(self._dep2, np.array(self._g2, dtype=np.int64), self._source, 1.0)
+            copy_domain(self._dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True
         # 6. gas corrector
         if use_ext:
@@ -505,183 +489,3 @@ class ParticleGridEngine:
                 self.gas_terms_impulse += (ext.sum(axis=(1, 2, 3)) - before) * h * self.mesh.cell_volume
         gas.advance_stage(1, h, ext if use_ext else None)
         self._exchange(t + h)
-
-    def prepared_particle_density(self) -> np.ndarray:
-        """Particle mass density ``(nz, ny, nx)`` of the prepared (sorted, weighted) particles,
-        the deposit of the drag problem (no grid-scale filter): for a mesh term's ``update``."""
-        if self.feedback:
-            return self._dep1[..., 0::4].sum(axis=-1)
-        p = self.particles
-        pos, vel, species, pid, mass = p.buffers()
-        dust_values(pos, vel, species, mass, p.n, self._inv_vol, False, 0.0, 0.0, self._values, self._cols)
-        self._rho_p[...] = 0.0
-        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._zero_cols, -1, 0)
-        return self._rho_p[..., 0].copy()
-
-    # ------------------------------------------------------------------ outputs
-    def dust_density(self, per_species: bool = False) -> np.ndarray:
-        """Particle mass density on the mesh ``(nz, ny, nx)`` (or ``(nspecies, nz, ny, nx)``)
-        with the run's kernel (without the grid-scale filter), at the current positions."""
-        p = self.particles
-        self._prepare(self.t)
-        pos, vel, species, pid, mass = p.buffers()
-        dust_values(pos, vel, species, mass, p.n, self._inv_vol, False, 0.0, 0.0, self._values, self._cols)
-        self._rho_p[...] = 0.0
-        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._cols, -1, 0)
-        rho = np.moveaxis(self._rho_p, -1, 0).copy()
-        return rho if per_species else rho.sum(axis=0)
-
-    def particle_momentum(self) -> np.ndarray:
-        """``Σ m v`` of the particles with the full azimuthal velocity (3,)."""
-        p = self.particles
-        mom = p.momentum()
-        if self.geometry.velocity_relative_to_shear:
-            mom[1] -= self.geometry.q * self.geometry.omega * float(p.mass @ p.pos[0])
-        return mom
-
-    def mode_amplitudes(self) -> np.ndarray:
-        """Complex amplitudes of :data:`~dustygas.particles.diagnostics.MODE_FIELDS` for :attr:`mode`."""
-        rho, vx, vy, vz = self.gas.primitive()
-        qo = self.geometry.q * self.geometry.omega
-        gas = gas_mode(rho, (vx, vy + qo * self._xc, vz), self._phase, self._cell_factor)
-        dust = np.empty(4, dtype=np.complex128)
-        p = self.particles
-        shear_y = 0.0 if self.geometry.velocity_relative_to_shear else qo
-        particle_mode(p.pos, p.vel, p.mass, self._k[0], self._k[1], self._k[2], shear_y, dust)
-        return np.concatenate([gas, dust])
-
-    def history(self) -> dict[str, float]:
-        out = self.gas.history()
-        pm = self.particle_momentum()
-        p = self.particles
-        out["particle_mass"] = float(p.mass.sum())
-        for a, name in enumerate("xyz"):
-            out[f"particle_momentum_{name}"] = float(pm[a])
-            out[f"total_momentum_{name}"] = out[f"momentum_{name}"] + float(pm[a])
-            out[f"particle_terms_impulse_{name}"] = float(self.terms_impulse[a])
-            if self.gas_terms:
-                out[f"gas_terms_impulse_{name}"] = float(self.gas_terms_impulse[a])
-        if any(k in ("outflow",) for k in self.boundary_kinds):
-            for face, name in enumerate(FACES):
-                out[f"particle_mass_lost_{name}"] = float(self.lost[face, 0])
-            out["particle_mass_lost"] = float(self.lost[:, 0].sum())
-            for a, name in enumerate("xyz"):
-                out[f"particle_momentum_lost_{name}"] = float(self.lost[:, 1 + a].sum())
-        if self.forces.gravity_z > 0 or self.nspecies > 1 or self.geometry.shape[2] > 1:
-            shear_y = 0.0 if self.geometry.velocity_relative_to_shear else self.geometry.q * self.geometry.omega
-            stats = species_statistics(p.pos, p.vel, p.mass, p.species, self.nspecies, shear_y)
-            for s in range(self.nspecies):
-                for key, value in stats[s].items():
-                    out[f"species_{s}_{key}"] = value
-            rho_p = self.dust_density()
-            out["rho_p_max"] = float(rho_p.max())
-        for term in self.particle_terms:
-            if hasattr(term, "history"):
-                out.update(term.history(self, self.dust_density()))
-        if self.mode is not None:
-            for name, value in zip(MODE_FIELDS, self.mode_amplitudes()):
-                out[f"mode_{name}_re"] = float(value.real)
-                out[f"mode_{name}_im"] = float(value.imag)
-        return out
-
-    def _attrs(self) -> dict[str, Any]:
-        attrs = {"particle_kernel": self.kernel, "feedback": self.feedback, "particle_smoothing": self.smooth,
-                 "t_stop": self.species.t_stop.tolist(), "drag_law": list(self.laws), "nspecies": self.nspecies,
-                 "particle_boundaries": list(self.boundary_kinds)}
-        if self.mode is not None:
-            attrs["mode"] = list(self.mode)
-            attrs["mode_k"] = self._k.tolist()
-        for term in self.particle_terms:
-            if hasattr(term, "attrs"):
-                attrs.update(term.attrs())
-        return attrs
-
-    def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
-        arrays, attrs = self.gas.snapshot()
-        rho_s = self.dust_density(per_species=True)
-        arrays["rho_p"] = rho_s.sum(axis=0)
-        if self.nspecies > 1:
-            arrays["rho_p_species"] = rho_s
-        for name, value in self.particles.arrays().items():
-            arrays[f"particles/{name}"] = value
-        for term in self.particle_terms:
-            if hasattr(term, "snapshot"):
-                arrays.update(term.snapshot(self, arrays["rho_p"]))
-        return arrays, {**attrs, **self._attrs()}
-
-    def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
-        arrays, attrs = self.gas.checkpoint()
-        for name, value in self.particles.arrays().items():
-            arrays[f"particles/{name}"] = value
-        if self._have_source:
-            arrays["particles/gas_source"] = self._source.copy()
-        arrays["particles/lost"] = self.lost.copy()
-        arrays["particles/terms_impulse"] = np.concatenate([self.terms_impulse, self.gas_terms_impulse])
-        return arrays, attrs
-
-    def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
-        self.gas.restore({k: v for k, v in arrays.items() if not k.startswith("particles/")}, attrs)
-        try:
-            parts = {k: np.asarray(arrays[f"particles/{k}"]) for k in ("pos", "vel", "species", "pid", "mass")}
-        except KeyError as exc:
-            raise UserError(f"checkpoint has no particle array {exc}") from None
-        self.particles = ParticleStore(**parts)
-        self._allocate(self.particles.capacity)
-        self._check_inside()
-        self._vmax = np.max(np.abs(self.particles.vel), axis=1) if self.particles.n else np.zeros(3)
-        self._have_source = "particles/gas_source" in arrays
-        if self._have_source:
-            self._source[...] = arrays["particles/gas_source"]
-        if "particles/lost" in arrays:
-            self.lost[...] = arrays["particles/lost"]
-            imp = np.asarray(arrays["particles/terms_impulse"])
-            self.terms_impulse[...] = imp[:3]
-            self.gas_terms_impulse[...] = imp[3:]
-
-
-def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
-                    boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic"),
-                    shear_offset: float = 0.0) -> np.ndarray:
-    """Mass density ``(nz, ny, nx)`` of particles at ``pos`` (3, N) on ``mesh`` with ``kernel``
-    (for set-ups, analyses and tests: the deposit the engine uses, without a gas engine; a
-    ``shear-periodic`` x puts the radial images ``shear_offset`` along y)."""
-    from ..grid.mesh import Mesh  # noqa: F401  (type only)
-
-    pos = np.asarray(pos, dtype=np.float64)
-    n = pos.shape[1]
-    store = ParticleStore.create(pos, np.zeros((3, n)), 0, mass)
-    active = tuple(s > 1 for s in mesh.shape)
-    gas_kinds = tuple(b if b in ("periodic", "shear-periodic") else "outflow" for b in boundaries)
-    pb = make_particle_boundaries(tuple(boundaries), gas_kinds, active, 0.0, 0.0)
-    order = KERNELS[kernel]
-    R = KERNEL_REACH[order]
-    reach = np.array([R if a else 0 for a in active], dtype=np.int64)
-    lay, sp, off = mesh.layout, mesh.spacing, mesh.offsets
-    nx, ny, nz = mesh.shape
-    ncell = nx * ny * nz
-    keys = np.zeros(n, dtype=np.int64)
-    cell_start = np.zeros(ncell + 1, dtype=np.int64)
-    p_, v_, s_, i_, m_ = store.buffers()
-    sort_by_cell(p_, v_, s_, i_, m_, n, lay, sp, off, keys, np.zeros(n, dtype=np.int64), np.zeros(ncell, dtype=np.int64),
-                 cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64))
-    wts = np.zeros((n, 3, 2 * R + 1))
-    stencil(p_, n, lay, sp, off, order, R, wts)
-    args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
-    cap = max(16, n // 2)
-    while True:
-        img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)
-        img_w, img_dvy = np.zeros((cap, 3, 2 * R + 1)), np.zeros(cap)
-        m = build_images(*args, img_src, img_cell, img_w, img_dvy)
-        if m <= cap:
-            break
-        cap = 2 * m
-    row_start = np.zeros((ny + 2 * reach[1]) * (nz + 2 * reach[2]) + 1, dtype=np.int64)
-    sort_images(m, lay, reach, i_, img_src, img_cell, img_w, img_dvy, row_start)
-    values = (m_[:n] / mesh.cell_volume).reshape(n, 1).copy()
-    cols = np.zeros(n, dtype=np.int64)
-    img_val = np.zeros((max(m, 1), 1))
-    image_values(m, img_src, img_dvy, values, -1, 0, img_val)
-    out = np.zeros((nz, ny, nx, 1))
-    pull_deposit(out, np.zeros(3, dtype=np.int64), lay, reach, R, cell_start, keys, wts, values, cols, row_start,
-                 img_cell, img_w, img_val, np.zeros(max(m, 1), dtype=np.int64))
-    return out[..., 0]

@@ -85,19 +85,21 @@ def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row
 
 
 @njit(cache=True, error_model="numpy")
-def image_values(m_total, img_src, img_dvy, values, vy_col, mass_col, out) -> None:
+def image_values(m_total, img_src, img_dvy, values, vy_col, mass_col, out, col, img_col) -> None:
     """``out[m] = values[img_src[m]]``, plus ``img_dvy[m] values[., mass_col]`` in column ``vy_col``
-    (the azimuthal momentum of a shear-periodic image; ``vy_col < 0``: none)."""
+    (the azimuthal momentum of a shear-periodic image; ``vy_col < 0``: none), and the column of
+    the source particle ``img_col[m] = col[img_src[m]]``."""
     nv = values.shape[1]
     for m in range(m_total):
         p = img_src[m]
+        img_col[m] = col[p]
         for c in range(nv):
             out[m, c] = values[p, c]
         if vy_col >= 0:
             out[m, vy_col] += img_dvy[m] * values[p, mass_col]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _add_record(acc, I, wts, r, wyz, rx, R, nx, vals, col, nv):
     """Record ``r`` (weights ``wts[r]``, values ``vals[r]``) into the row ``acc`` from cell ``I``."""
     for di in range(-rx, rx + 1):
@@ -105,8 +107,18 @@ def _add_record(acc, I, wts, r, wyz, rx, R, nx, vals, col, nv):
         if 0 <= i < nx:
             w = wyz * wts[r, 0, R + di]
             if w != 0.0:
-                for c in range(nv):
-                    acc[i, col + c] += w * vals[r, c]
+                if nv == 4:  # the deposits of the drag problem (4) and of the back-reaction (3), unrolled
+                    acc[i, col] += w * vals[r, 0]
+                    acc[i, col + 1] += w * vals[r, 1]
+                    acc[i, col + 2] += w * vals[r, 2]
+                    acc[i, col + 3] += w * vals[r, 3]
+                elif nv == 3:
+                    acc[i, col] += w * vals[r, 0]
+                    acc[i, col + 1] += w * vals[r, 1]
+                    acc[i, col + 2] += w * vals[r, 2]
+                else:
+                    for c in range(nv):
+                        acc[i, col + c] += w * vals[r, c]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")

@@ -74,7 +74,7 @@ from ..physics.drag import epstein_stopping_time_scalar
 __all__ = ["FIXED", "EPSTEIN", "DRAG_LAWS", "Species", "stopping_time", "relax", "oscillator_step", "relaxation_rates",
            "relaxation_modes",
            "cell_model", "cell_model_decay", "step_decay", "one_species_mode",
-           "one_species_response", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_with"]
+           "one_species_response", "MAX_SPECIES", "N_COEF", "step_coefficients", "relax_row"]
 
 FIXED, EPSTEIN = 0, 1
 #: name -> code of the stopping-time laws
@@ -115,9 +115,11 @@ def relax(v0: float, ts: float, h: float, u0: float, a: float, g: float, r: floa
 
 
 @njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
-def relax_with(v0: float, c, base: int, ts: float, u0: float, a: float, g: float, r: float) -> float:
-    """:func:`relax` with its step factors ``c[base .. base+2] = (e^{-h/ts}, 1 - e^{-h/ts}, h - ts (1 - e^{-h/ts}))``."""
-    return v0 * c[base] + c[base + 1] * (u0 + g * ts) + a * c[base + 2] + r
+def relax_row(v0: float, c, row: int, base: int, ts: float, u0: float, a: float, g: float, r: float) -> float:
+    """:func:`relax` with its step factors in row ``row`` of the table ``c``,
+    ``c[row, base .. base+2] = (e^{-h/ts}, 1 - e^{-h/ts}, h - ts (1 - e^{-h/ts}))`` (a kernel over
+    particles reads the table of its species without a view per particle)."""
+    return v0 * c[row, base] + c[row, base + 1] * (u0 + g * ts) + a * c[row, base + 2] + r
 
 
 #: per-species step coefficients: relax factors for h and h/2, then the vertical oscillator's

@@ -39,7 +39,7 @@ from __future__ import annotations
 from numba import njit
 
 __all__ = ["NGP", "CIC", "TSC", "TSC_C", "KERNELS", "KERNEL_WIDTH", "KERNEL_REACH", "axis_weights", "cell_weights",
-           "axis_cell", "axis_stencil"]
+           "axis_cell", "stencil_into"]
 
 NGP, CIC, TSC, TSC_C = 0, 1, 2, 3
 #: name -> code of the assignment functions
@@ -103,7 +103,7 @@ def cell_weights(s: float, order: int, reach: int, out) -> int:
 def axis_cell(x: float, x0: float, inv_dx: float, offset: int, n: int) -> int:
     """Local index of the cell containing ``x`` along an axis of this block: ``floor((x - x0)/Δx)``
     from the global origin ``x0``, minus the block's first cell ``offset``, clipped into
-    ``0 .. n-1`` (0 on an inactive axis). The same arithmetic as :func:`axis_stencil`."""
+    ``0 .. n-1`` (0 on an inactive axis). The same arithmetic as :func:`stencil_into`."""
     if n == 1:
         return 0
     c = int((x - x0) * inv_dx - 0.5 + 2.5) - 2 - offset
@@ -111,8 +111,11 @@ def axis_cell(x: float, x0: float, inv_dx: float, offset: int, n: int) -> int:
 
 
 @njit(cache=True, error_model="numpy", inline="always")  # hot: a call costs more than its body
-def axis_stencil(x: float, x0: float, inv_dx: float, offset: int, n: int, order: int, reach: int, out) -> int:
-    """:func:`axis_cell` and the weights ``out[0 .. 2 reach]`` of the cells around it (:func:`cell_weights`).
+def stencil_into(x: float, x0: float, inv_dx: float, offset: int, n: int, order: int, reach: int, wts, p: int,
+                 axis: int) -> int:
+    """:func:`axis_cell` and the weights of the cells around it (:func:`cell_weights`), written
+    into ``wts[p, axis, 0 .. 2 reach]`` (indices, not a view per particle and axis: a view
+    costs a reference count, more than the weights).
 
     On an inactive axis: cell 0 and the weight 1 in the middle slot. A position that rounds
     onto the upper face of the block is given the weights of the last cell (the physical
@@ -120,15 +123,27 @@ def axis_stencil(x: float, x0: float, inv_dx: float, offset: int, n: int, order:
     """
     if n == 1:
         for m in range(2 * reach + 1):
-            out[m] = 0.0
-        out[reach] = 1.0
+            wts[p, axis, m] = 0.0
+        wts[p, axis, reach] = 1.0
         return 0
     s = (x - x0) * inv_dx - 0.5
-    c = cell_weights(s, order, reach, out) - offset
+    c = int(s + 2.5) - 2 - offset  # the containing cell, as cell_weights
     while c > n - 1:
         s = s - 1e-12 * max(1.0, abs(s))
-        c = cell_weights(s, order, reach, out) - offset
+        c = int(s + 2.5) - 2 - offset
     while c < 0:
         s = s + 1e-12 * max(1.0, abs(s))
-        c = cell_weights(s, order, reach, out) - offset
+        c = int(s + 2.5) - 2 - offset
+    first, w0, w1, w2, w3, w4 = axis_weights(s, order)
+    for m in range(2 * reach + 1):
+        wts[p, axis, m] = 0.0
+    o = first - (c + offset) + reach
+    wts[p, axis, o] = w0
+    if order >= CIC:
+        wts[p, axis, o + 1] = w1
+    if order >= TSC:
+        wts[p, axis, o + 2] = w2
+    if order == TSC_C:
+        wts[p, axis, o + 3] = w3
+        wts[p, axis, o + 4] = w4
     return c

@@ -1,8 +1,6 @@
 """The compiled particle passes of a coupled step (see :mod:`dustygas.particles.coupling` for the
 order in which the engine calls them and :mod:`dustygas.particles.drag` for the drag).
 
-* :func:`drift` -- ``x += (h/2) v`` along the active axes;
-* :func:`stencil` -- each sorted particle's cell and weights (:mod:`dustygas.particles.interp`);
 * :func:`dust_values` -- what a particle deposits for the local drag problem (its mass and
   momentum per unit volume, in its species' columns) or for a density field;
 * :func:`cell_trajectories` -- the local drag problem of every domain cell: the gas velocity
@@ -19,12 +17,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .drag import (FIXED, MAX_SPECIES, N_COEF, cell_model_decay, one_species_mode, one_species_response, relax_with,
+from .drag import (FIXED, MAX_SPECIES, N_COEF, cell_model_decay, one_species_mode, one_species_response, relax_row,
                    step_coefficients, step_decay, stopping_time)
-from .interp import axis_stencil
 from .terms import ForceTable, frame_acceleration
 
-__all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "drift", "stencil", "dust_values",
+__all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "dust_values",
            "cell_trajectories", "explicit_drag_source", "kick", "copy_domain", "occupied_rows",
            "shear_frame_forces"]
 
@@ -44,31 +41,6 @@ def trajectory_columns(nspecies: int, need_rho: bool, mesh: bool) -> tuple[int, 
     c_mesh = n if mesh else -1
     n += 3 if mesh else 0
     return n, c_rho, c_mesh
-
-
-@njit(cache=True, parallel=True, error_model="numpy")
-def drift(pos, vel, n, half_dt, active) -> None:
-    """``x += half_dt v`` for particles ``0 .. n-1`` along the active axes."""
-    nchunk = min(max(n, 1), PARTICLE_CHUNKS)
-    for c in prange(nchunk):
-        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
-            for a in range(3):
-                if active[a]:
-                    pos[a, p] += half_dt * vel[a, p]
-
-
-@njit(cache=True, parallel=True, error_model="numpy")
-def stencil(pos, n, lay, sp, off, order, R, wts) -> None:
-    """Weights ``wts[p, axis, 0 .. 2R]`` of the sorted particles around their cells."""
-    nn = (lay.nx, lay.ny, lay.nz)
-    x0 = (sp.x0, sp.y0, sp.z0)
-    inv = (1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz)
-    o = (off.i0, off.j0, off.k0)
-    nchunk = min(max(n, 1), PARTICLE_CHUNKS)
-    for c in prange(nchunk):
-        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
-            for a in range(3):
-                axis_stencil(pos[a, p], x0[a], inv[a], o[a], nn[a], order, R, wts[p, a])
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
@@ -253,7 +225,7 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
     w2 = ft.gravity_z
     nchunk = min(max(n, 1), PARTICLE_CHUNKS)
     for c in prange(nchunk):
-        own = np.empty(N_COEF)
+        own = np.empty((1, N_COEF))  # the step coefficients of an Epstein particle
         bx = by = bz = 0.0
         mx = my = mz = 0.0
         for p in range(c * n // nchunk, (c + 1) * n // nchunk):
@@ -300,22 +272,24 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             ux, uy, uz = u0x, u0y, u0z
             if sp_tab.law[s] == FIXED:
                 ts = sp_tab.t_stop[s]
-                cf = coef[s]
+                cf = coef  # row `row` of cf: no view per particle (a view costs a reference count)
+                row = s
             else:
                 ts = stopping_time(sp_tab.law[s], sp_tab.t_stop[s], sp_tab.grain[s], sp_tab.cs, rho_)
-                step_coefficients(ts, w2, h, own)
+                step_coefficients(ts, w2, h, own[0])
                 cf = own
+                row = 0
             # the held accelerations at x^{n+1/2} and the velocity predicted over half a step
             ax0, ay0, az0 = frame_acceleration(x, v0x, w0y, ft)
             mgx, mgy, mgz = mx_, my_, mz_
-            hx = relax_with(v0x, cf, 3, ts, ux, ax_, ax0 + mgx, 0.0)
-            hy = relax_with(w0y, cf, 3, ts, uy, ay_, ay0 + mgy, 0.0)
+            hx = relax_row(v0x, cf, row, 3, ts, ux, ax_, ax0 + mgx, 0.0)
+            hy = relax_row(w0y, cf, row, 3, ts, uy, ay_, ay0 + mgy, 0.0)
             gx_, gy_, _ = frame_acceleration(x, hx, hy, ft)
             gx_ += mgx
             gy_ += mgy
             gz_ = az0 + mgz
-            nvx = relax_with(v0x, cf, 0, ts, ux, ax_, gx_, rx_)
-            nwy = relax_with(w0y, cf, 0, ts, uy, ay_, gy_, ry_)
+            nvx = relax_row(v0x, cf, row, 0, ts, ux, ax_, gx_, rx_)
+            nwy = relax_row(w0y, cf, row, 0, ts, uy, ay_, gy_, ry_)
             x1 = x + 0.5 * h * nvx if active[0] else x
             nvy = nwy - shear_rate * x1
             jx = nvx - v0x - gx_ * h
@@ -324,13 +298,13 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
                 z0 = z - 0.5 * h * v0z
                 b0 = gz_ + uz / ts
                 b1 = az_ / ts
-                zo = cf[6] * z0 + cf[7] * v0z + cf[8] * b0 + cf[9] * b1
-                vo = cf[10] * z0 + cf[11] * v0z + cf[12] * b0 + cf[13] * b1
+                zo = cf[row, 6] * z0 + cf[row, 7] * v0z + cf[row, 8] * b0 + cf[row, 9] * b1
+                vo = cf[row, 10] * z0 + cf[row, 11] * v0z + cf[row, 12] * b0 + cf[row, 13] * b1
                 nvz = vo + rz_
                 nz_ = zo + 0.5 * h * rz_
                 ext_z = gz_ * h - w2 * h * 0.5 * (z0 + nz_)
             else:
-                nvz = relax_with(v0z, cf, 0, ts, uz, az_, gz_, rz_)
+                nvz = relax_row(v0z, cf, row, 0, ts, uz, az_, gz_, rz_)
                 ext_z = gz_ * h
                 nz_ = z + 0.5 * h * nvz
             jz = nvz - v0z - ext_z

@@ -28,9 +28,9 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import SetupError
-from .interp import axis_cell
+from .interp import axis_cell, stencil_into
 
-__all__ = ["ParticleStore", "compact", "first_nonfinite", "sort_by_cell"]
+__all__ = ["ParticleStore", "compact", "sort_by_cell"]
 
 
 class ParticleStore:
@@ -165,11 +165,29 @@ def compact(pos, vel, species, pid, mass, n, keep) -> int:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def first_nonfinite(pos, vel, n) -> int:
-    """Index of the first of particles ``0 .. n-1`` with a non-finite position or velocity, or
-    -1 (the cell search and the stencil assume finite positions: a NaN never finds its cell)."""
+def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork,
+                 kernel, R, wts) -> int:
+    """Put particles ``0 .. n-1`` into canonical order (module docstring), fill ``cell_start``
+    and the weights ``wts`` ``(>= n, 3, 2R + 1)`` of assignment function ``kernel`` (code of
+    :data:`~dustygas.particles.interp.KERNELS`, reach ``R``) of the sorted particles
+    (:func:`~dustygas.particles.interp.stencil_into`). Returns -1, or the index of the first
+    particle whose position or velocity is not finite (then nothing is sorted nor weighed:
+    the cell search assumes finite positions, a NaN never finds its cell).
+
+    ``lay``, ``sp``, ``off``: the block (:mod:`dustygas.grid.mesh`; ``sp.x0`` the global origin).
+    ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
+    ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
+    ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
+    pass, one copy-back pass that also weighs the particles; when the order holds, as at most steps
+    in 2D, a pass of its own). The histogram and its prefix sum are serial (``O(N + ncell)``);
+    computing the keys, the weights, permuting the arrays and ordering each cell by ``pid`` run in
+    parallel.
+    """
+    nx, ny, nz = lay.nx, lay.ny, lay.nz
+    ncell = nx * ny * nz
+    ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
     nchunk = min(max(n, 1), 64)
-    first = np.full(nchunk, -1, dtype=np.int64)
+    first_bad = np.full(nchunk, -1, dtype=np.int64)
     for c in prange(nchunk):
         for p in range(c * n // nchunk, (c + 1) * n // nchunk):
             ok = True
@@ -177,33 +195,17 @@ def first_nonfinite(pos, vel, n) -> int:
                 if not (np.isfinite(pos[a, p]) and np.isfinite(vel[a, p])):
                     ok = False
             if not ok:
-                first[c] = p
-                break
+                if first_bad[c] < 0:
+                    first_bad[c] = p
+                keys[p] = 0
+                continue
+            i = axis_cell(pos[0, p], sp.x0, ix, off.i0, nx)
+            j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
+            k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
+            keys[p] = (k * ny + j) * nx + i
     for c in range(nchunk):
-        if first[c] >= 0:
-            return first[c]
-    return -1
-
-
-@njit(cache=True, parallel=True, error_model="numpy")
-def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork) -> None:
-    """Put particles ``0 .. n-1`` into canonical order (module docstring) and fill ``cell_start``.
-
-    ``lay``, ``sp``, ``off``: the block (:mod:`dustygas.grid.mesh`; ``sp.x0`` the global origin).
-    ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
-    ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
-    ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
-    pass, one copy-back pass). The histogram and its prefix sum are serial (``O(N + ncell)``); computing the
-    keys, permuting the arrays and ordering each cell by ``pid`` run in parallel.
-    """
-    nx, ny, nz = lay.nx, lay.ny, lay.nz
-    ncell = nx * ny * nz
-    ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
-    for p in prange(n):
-        i = axis_cell(pos[0, p], sp.x0, ix, off.i0, nx)
-        j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
-        k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
-        keys[p] = (k * ny + j) * nx + i
+        if first_bad[c] >= 0:
+            return first_bad[c]
     for c in range(ncell + 1):
         cell_start[c] = 0
     for p in range(n):
@@ -216,7 +218,12 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
             ordered = False
             break
     if ordered:
-        return
+        for c in prange(nchunk):
+            for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+                stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
+                stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
+                stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
+        return -1
     # stable placement: order[slot] = old index
     for c in range(ncell):
         ptr[c] = cell_start[c]
@@ -236,7 +243,6 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
                 order[r + 1] = order[r]
                 r -= 1
             order[r + 1] = v
-    nchunk = min(max(n, 1), 64)
     for c in prange(nchunk):  # gather every array in the new order ...
         for p in range(c * n // nchunk, (c + 1) * n // nchunk):
             o = order[p]
@@ -247,7 +253,7 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
             iwork[0, p] = pid[o]
             iwork[1, p] = species[o]
             iwork[2, p] = keys[o]
-    for c in prange(nchunk):  # ... and copy it back
+    for c in prange(nchunk):  # ... and copy it back, with the weights of the new order
         for p in range(c * n // nchunk, (c + 1) * n // nchunk):
             for a in range(3):
                 pos[a, p] = fwork[a, p]
@@ -256,3 +262,7 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
             pid[p] = iwork[0, p]
             species[p] = iwork[1, p]
             keys[p] = iwork[2, p]
+            stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
+            stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
+            stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
+    return -1

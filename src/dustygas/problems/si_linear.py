@@ -53,7 +53,8 @@ from ..grid.mesh import cell_average_factor
 from ..grid.params import SCHEME
 from ..particles import ConstantAcceleration, GasConstantAcceleration, ParticleStore, RotatingFrame
 from ..particles.boundaries import wrap_positions
-from ..particles.coupling import GAS_INTEGRATORS, deposit_density
+from ..particles.coupling import GAS_INTEGRATORS
+from ..particles.density import deposit_density
 from ..particles.params import PARTICLES, lattice_positions, particle_engine_from_config
 from ..runner import RUN_SCHEMA
 from . import Problem, preset, register
