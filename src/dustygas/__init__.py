@@ -2,7 +2,7 @@
 
 The public API is :mod:`dustygas.api`, re-exported here (``import dustygas as dg``):
 
-* run problems: :func:`run`, :func:`restart`, :func:`problem_names`, :func:`get_problem`,
+* run problems: :func:`run`, :func:`restart`, :func:`branch`, :func:`problem_names`, :func:`get_problem`,
   :func:`problem_parameters`;
 * read and export runs: :func:`open_run` (xarray Datasets), :func:`export`;
 * look at runs: :func:`plot_history`, :func:`plot_snapshot`, :func:`movie`;
@@ -32,9 +32,10 @@ from .api import (
     problem_parameters,
     reproduce_figures,
     restart,
+    branch,
     run,
 )
 
-__all__ = ["__version__", "run", "restart", "dry_run", "problem_names", "get_problem", "problem_parameters", "open_run",
+__all__ = ["__version__", "run", "restart", "branch", "dry_run", "problem_names", "get_problem", "problem_parameters", "open_run",
            "export", "plot_history", "plot_snapshot", "movie", "measure_growth", "growth_theory",
            "figure_names", "reproduce_figures"]

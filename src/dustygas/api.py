@@ -1,7 +1,7 @@
 """The public Python API: what a script imports (``import dustygas as dg``).
 
 ==========================  =========================================================================
-run a problem               :func:`run`, :func:`restart`, :func:`dry_run`, :func:`problem_names`,
+run a problem               :func:`run`, :func:`restart`, :func:`branch`, :func:`dry_run`, :func:`problem_names`,
                             :func:`get_problem`, :func:`problem_parameters`
 read a run                  :func:`open_run` (xarray Datasets: ``.history``, ``.snapshot(i)``)
 export for other tools      :func:`export` (Athena++ athdf + XDMF, yt particles, Phantom, CSV)
@@ -50,7 +50,7 @@ from .problems import problem_names as _problem_names
 from .runner import CHECKPOINT_ATTRS, RunResult, run_engine
 
 __all__ = [
-    "run", "restart", "dry_run", "get_problem", "problem_names", "problem_parameters",
+    "run", "restart", "branch", "dry_run", "get_problem", "problem_names", "problem_parameters",
     "open_run", "export", "plot_history", "plot_snapshot", "movie",
     "measure_growth", "growth_theory", "figure_names", "reproduce_figures",
 ]
@@ -174,6 +174,42 @@ def restart(
         rundir.unlock(discard=True)  # a refused restart leaves the directory as it was
         raise
     return run_engine(engine, cfg, rundir, progress=progress, restart_from=(found.arrays, attrs))
+
+
+def branch(
+    problem: str,
+    source: str | Path,
+    output: str | Path | None = None,
+    config: Iterable[str | Path] = (),
+    set: Iterable[str] = (),
+    overwrite: bool = False,
+    walltime: float | None = None,
+    progress: bool | None = False,
+) -> RunResult:
+    """Run ``problem`` from the newest checkpoint of another problem's run ``source``
+    (``dustygas run PROBLEM --from RUN``; rules in :mod:`dustygas.branch`), e.g.
+    ``branch("si3d-selfgravity", "runs/si3d")`` switches self-gravity on in a saturated ``si3d``
+    box. ``output``, ``config``, ``set``, ``overwrite``, ``walltime`` and ``progress`` as in
+    :func:`run`; everything is checked before the new run directory is created.
+    """
+    from .branch import branch_config, read_branch_source
+
+    prob = _get_problem(problem)
+    found, stored = read_branch_source(prob, source)
+    overrides = list(set)
+    if walltime is not None:
+        overrides.append(f"run.walltime={float(walltime)!r}")
+    cfg = branch_config(prob.schema, stored, config, overrides, problem_name=problem, source=str(source))
+    prob.validate(cfg)
+    t0 = float(found.attrs["engine_t"])
+    prob.check_branch(cfg, t0)
+    check_cadence(cfg.run, t0)
+    path = check_output_path(output) if output is not None else default_run_path(problem)
+    RunDirectory(path).check_new(overwrite)
+    check_memory(prob, cfg)
+    engine = build_engine(prob, cfg)
+    return run_engine(engine, cfg, path, overwrite=overwrite, progress=progress,
+                      branch_from=(found.arrays, found.attrs, str(source)))
 
 
 #: zone-cycles and particle-updates per second and core assumed by :func:`dry_run`'s cost (the

@@ -54,6 +54,7 @@ import os
 import signal
 import sys
 import time
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -267,6 +268,32 @@ class RunLoop:
         s.last_snapshot_time = float(attrs["loop_last_snapshot_time"])
         s.history = {k[len("history/"):]: list(v) for k, v in arrays.items() if k.startswith("history/")}
 
+    def branch(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any], source: str) -> None:
+        """Start from another problem's checkpoint (:mod:`dustygas.branch`): its engine state and
+        history rows, this run's output cadence on the grid from ``t = 0``, a snapshot now."""
+        eng = {k[len("engine/"):]: v for k, v in arrays.items() if k.startswith("engine/")}
+        eattrs = {k[len("engine_attr_"):]: v for k, v in attrs.items() if k.startswith("engine_attr_")}
+        self.engine.restore(eng, eattrs)
+        self.engine.t = float(attrs["engine_t"])
+        self.engine.cycle = int(attrs["engine_cycle"])
+        run, s, t0 = self.run, self.state, float(attrs["engine_t"])
+        source_run = tomllib.loads(str(attrs["config"])).get("run", {})
+        same_rows = run.dt_history == source_run.get("dt_history")
+        s.next_history = float(attrs["loop_next_history"]) if same_rows else (
+            _next_time(0.0, run.dt_history, t0) if run.dt_history > 0 else t0)
+        s.next_snapshot = _next_time(0.0, run.dt_snapshot, t0) if run.dt_snapshot > 0 else math.inf
+        s.next_checkpoint = _next_time(0.0, run.dt_checkpoint, t0) if run.dt_checkpoint > 0 else math.inf
+        diagnostics = self._finite_diagnostics()
+        s.history = {k[len("history/"):]: list(v) for k, v in arrays.items() if k.startswith("history/")}
+        rows = len(s.history.get("time", []))
+        for key, value in diagnostics.items():  # columns of this problem's own physics, still off
+            s.history.setdefault(key, [float(value)] * rows)
+        self._write_snapshot()
+        self._write_history()
+        self.rundir.log(f"branched from {source} at time={t0:.6g} cycle={self.engine.cycle} "
+                        f"(problem {attrs['problem']})")
+        self._log_messages()
+
     # ----------------------------------------------------------------- loop
     def start(self) -> None:
         """Outputs at the initial time of a fresh run."""
@@ -434,13 +461,16 @@ def run_engine(
     overwrite: bool = False,
     progress: bool | None = None,
     restart_from: tuple[dict, dict] | None = None,
+    branch_from: tuple[dict, dict, str] | None = None,
 ) -> RunResult:
     """Run ``engine`` (already holding its initial state) into the run directory ``path``.
 
     A fresh run creates and locks the directory (refused if another process writes it or it
     holds another run and ``overwrite`` is false). With ``restart_from=(arrays, attrs)`` of a
     checkpoint the directory must exist; it is locked (if the caller has not already) and the
-    run continues from that state. The lock is released when the run returns or raises.
+    run continues from that state. With ``branch_from=(arrays, attrs, source)`` a fresh directory
+    starts from another problem's checkpoint (:meth:`RunLoop.branch`). The lock is released when
+    the run returns or raises.
     """
     rundir = path if isinstance(path, RunDirectory) else RunDirectory(path)
     loop = RunLoop(engine, cfg, rundir, progress)
@@ -451,7 +481,10 @@ def run_engine(
             rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
             _log_takeover(rundir)
             try:
-                loop.start()
+                if branch_from is None:
+                    loop.start()
+                else:
+                    loop.branch(*branch_from)
             except SimulationError as exc:  # e.g. an invalid initial state: dump it like any other
                 loop._dump_crash(exc)
                 raise

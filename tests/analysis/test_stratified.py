@@ -54,3 +54,38 @@ def test_gaussian_layer_gives_its_scale_height():
     h = eng.history()
     assert h["species_0_scale_height"] == pytest.approx(0.02, rel=0.01)
     assert h["species_0_mass"] == pytest.approx(0.03 * math.sqrt(2 * math.pi) * 0.2 * 0.2, rel=1e-12)
+
+
+def _write(path, columns):
+    names = list(columns)
+    rows = np.column_stack([np.asarray(columns[k], dtype=float) for k in names])
+    path.write_text("# planted\n" + ",".join(names) + "\n" + "\n".join(",".join(repr(float(v)) for v in r) for r in rows) + "\n")
+
+
+def test_saturation_checks_on_planted_series(tmp_path):
+    """The si3d figures' checks: the window is the last 10 orbits (5-15 of a 15-orbit run);
+    filaments 12x the midplane mean pass and 8x fail; FFT peaks with k_y != 0 in 3 of 4 window
+    snapshots pass and 1 of 4 fail; a layer steady in the window passes, one thinning by half fails."""
+    from dustygas.reproduce.si3d_checks import fig1_10_checks, fig1_13_checks, fig4_10_checks, window_start
+
+    assert (window_start(15.0), window_start(30.0), window_start(6.0)) == (5.0, 20.0, 2.0)
+    t = np.linspace(0.0, 15.0, 151)
+    early = t < 5.0  # outside the window: a spike there must not count
+    for peak, passes in ((12.0, True), (8.0, False)):
+        rho_max = np.where(early, 50.0, 2.0 + (peak - 2.0) * (t == 10.0))
+        _write(tmp_path / "fig1_10.csv", {"t_orbits": t, "rho_p_max": rho_max, "rho_p_midplane": np.ones_like(t)})
+        (check,) = fig1_10_checks(tmp_path)
+        assert check.value == pytest.approx(peak, rel=1e-12) and check.passed is passes
+    ts = np.array([0.0, 2.5, 5.0, 7.5, 10.0, 12.5, 15.0])  # the window holds the last five
+    for ky, passes in (([0, 0, 0, 5, 5, 5, 0], True), ([5, 5, 5, 0, 0, 0, 5], False)):
+        _write(tmp_path / "fig4_10.csv", {"t_orbits": ts, "kx": np.full(7, 31.4), "ky": ky,
+                                          "theta_k": np.zeros(7), "sigma_max_over_mean": np.ones(7)})
+        (check,) = fig4_10_checks(tmp_path)
+        assert check.value == pytest.approx(np.mean(np.array(ky[2:]) != 0)) and check.passed is passes
+    steady = np.where(early, 0.05, 0.01 * (1 + 0.1 * np.sin(3 * t)))
+    thinning = np.where(t < 10.0, 0.02, 0.01)
+    for hp, passes in ((steady, True), (thinning, False)):
+        _write(tmp_path / "fig1_13.csv", {"t_orbits": t, "Hp_0": hp})
+        (check,) = fig1_13_checks(tmp_path)
+        assert check.passed is passes
+    assert check.value == pytest.approx(0.5, rel=1e-12)

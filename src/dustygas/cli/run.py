@@ -15,6 +15,7 @@ DESCRIPTION = f"""Run a registered problem into a run directory.
   dustygas run si-linA -c params.toml           TOML file layered over the defaults
   dustygas run --restart myrun                  continue from the newest intact checkpoint
   dustygas run --restart myrun --set run.tlim=12    extend a finished run
+  dustygas run si3d-selfgravity --from runs/si3d    start from another problem's checkpoint
 
 A run writes config.toml, log.txt, history.h5, snapshots/ and checkpoints/ and ends with a
 checkpoint. SIGTERM, Ctrl-C or --walltime write a checkpoint before stopping; --restart
@@ -34,6 +35,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("-o", "--output", metavar="DIR", help="run directory (default runs/PROBLEM)")
     p.add_argument("--overwrite", action="store_true", help="replace the run in a non-empty output directory")
     p.add_argument("--restart", metavar="DIR", help="continue the run in DIR from its newest checkpoint")
+    p.add_argument("--from", dest="source", metavar="RUN",
+                   help="start PROBLEM from the newest checkpoint of another problem's run RUN, whose physics "
+                        "it keeps (e.g. si3d-selfgravity from an si3d run before gravity.t_on)")
     p.add_argument("--walltime", type=float, metavar="SECONDS",
                    help=f"checkpoint and stop (exit status {EXIT_WALLTIME}) after this many wall-clock seconds")
     p.add_argument("--threads", type=int, metavar="N",
@@ -61,9 +65,16 @@ def main(args: argparse.Namespace) -> int:
         return 0
     with compile_notice(enabled=not args.quiet):
         if args.restart is not None:
+            if args.source is not None:
+                raise UserError("--restart DIR and --from RUN exclude each other")
             if args.problem or args.config or args.output is not None or args.overwrite:
                 raise UserError("--restart DIR takes no problem name, --config, --output or --overwrite")
             result = api.restart(args.restart, set=overrides, walltime=args.walltime, progress=progress)
+        elif args.source is not None:
+            if not args.problem:
+                raise UserError("--from RUN: give the problem to start from it (e.g. si3d-selfgravity)")
+            result = api.branch(args.problem, args.source, output=args.output, config=args.config, set=overrides,
+                                overwrite=args.overwrite, walltime=args.walltime, progress=progress)
         else:
             if not args.problem:
                 raise UserError("run: give a problem name (see: dustygas problems) or --restart DIR")

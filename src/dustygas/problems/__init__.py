@@ -45,9 +45,18 @@ class Problem:
     #: defaults are still validated in full, and it runs with these overrides. Empty (the rule):
     #: the test runs the defaults themselves.
     smoke_overrides: ClassVar[tuple[str, ...]] = ()
+    #: problems whose checkpoints this one may start from (``dustygas run NAME --from RUN``,
+    #: :mod:`dustygas.branch`): their physics plus this problem's own, switched on later
+    branches_from: ClassVar[tuple[str, ...]] = ()
 
     def validate(self, cfg: Config) -> None:
         """Cross-parameter checks; raise :class:`~dustygas.errors.ConfigError` on failure."""
+
+    def check_branch(self, cfg: Config, t: float) -> None:
+        """Refuse (:class:`~dustygas.errors.ConfigError`) a branch at time ``t`` from a
+        :attr:`branches_from` run if this problem's own physics would already have acted by then."""
+        if self.branches_from:
+            raise NotImplementedError(f"{self.name} lists branches_from but does not check a branch")
 
     def build(self, cfg: Config) -> Any:
         """Return an engine holding the initial state for ``cfg``."""

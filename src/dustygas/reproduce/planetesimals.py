@@ -9,7 +9,7 @@ errors and the BIC's choice.
 
 Where the run comes from: ``--from RUN`` (e.g. a finished ``si3d-selfgravity``); otherwise the
 figure runs its own in ``DIR/runs/``. ``--full``: the ``si3d-selfgravity`` preset itself
-(32 × 32 × 48, gravity on at 20 orbits: hours on two cores). The quick default (minutes: 947
+(32 × 32 × 48, gravity on at 5 orbits, to 8: about an hour of one core). The quick default (minutes: 947
 steps to t = 3 took 594 s on the loaded 2-core machine; it stops at t = 2): the same box at
 16 × 16 × 24 with the gravity on from the start and strong, ``G̃ = 10`` (Hill density
 0.9 ρ_g0, below the initial midplane dust density Z/H_p = 1.5): the settled layer is

@@ -4,8 +4,8 @@ The thesis's Athena run (§4.5, Fig 4.7 caption) is ``dustygas run si3d-thesis``
 come from the laptop preset ``si3d`` (the same physics at 32 × 32 × 48 cells; ``dustygas
 reproduce --full``), run once into ``<output>/runs/si3d`` and reused by every figure (about an
 hour of a quiet core), or from any finished run given with ``dustygas reproduce ... --from
-RUN``. The quick default (``reproduce --all`` included) runs the same 30 orbits at half the
-resolution, 16 × 16 × 24 (a sixteenth of the cost), into ``<output>/runs/si3d-quick``:
+RUN``. The quick default (``reproduce --all`` included) runs 10 of its 12 orbits at half the
+resolution, 16 × 16 × 24 (a sixteenth of the cost per orbit), into ``<output>/runs/si3d-quick``:
 
 * Fig 4.7 -- particles near the midplane (``|z| < 0.03 H``) and near two boundaries, coloured by
   the dust density, at the end of the run;
@@ -28,7 +28,7 @@ from . import figure
 SLAB = 0.03  # H: the slab half-width of thesis Figs 4.7-4.9
 
 
-#: the quick default: the si3d preset at half its resolution and to 10 of its 30 orbits (about
+#: the quick default: the si3d preset at half its resolution and to 10 of its 12 orbits (about
 #: 7 CPU-minutes, extrapolated from its first 4 orbits on the 2-core machine)
 QUICK = ("grid.nx=16", "grid.ny=16", "grid.nz=24", "run.tlim=62.83185307179586")
 
