@@ -1,10 +1,15 @@
 """Polydisperse streaming instability against published values and the published N-trend.
 
-Published values (digits as printed by their authors):
+Reference values. Printed in a paper (digits as printed by the authors):
 
 * Benítez-Llambay, Krapp & Pessah (2019, Table 4), "linC": two species τ_s = (0.0425, 0.1),
   μ = (1, 0.5), K_x = K_z = 50, consistent fixed-t_s drag: ω = 0.3242790653 + 0.3027262829 i
-  (ten digits; we agree to 5e-11);
+  (ten digits; we agree to 5e-11).
+
+Independent-code values (the regression values of psitools' own test suite, an independent
+implementation by Paardekooper, McNally & Lovascio 2020/2021 -- code output, not numbers printed
+in their papers):
+
 * psitools' direct solver (McNally, Lovascio & Paardekooper 2021; its ``test_direct.py``): MRN,
   μ = 3, τ_s ∈ [1e-8, 0.1], K = (80, 100), Epstein drag (t_s ∝ 1/ρ_g), trapezoidal weights on
   N = 129, 257, 513 Chebyshev roots, continuum background: three values printed to 16 digits

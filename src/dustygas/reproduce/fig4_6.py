@@ -22,7 +22,11 @@ the same wavevector from t ≈ 3 on, and the fit of the eight fields misses theo
 to 1e-6 give the same curves, so the defect is linear; 1e-4 and 1e-3 are worse; a drag step
 dt = 0.02 t_s instead of 0.15 t_s changes nothing to t = 8). The operator there has, beside the
 growing mode, an inertial wave damped at only 5.6e-5 Ω (5.7e-4 Ω at τ_s = 0.01), which whatever
-the initial state misses of the eigenmode excites and nothing removes.
+the initial state misses of the eigenmode excites and nothing removes. A faster mode does not cure it:
+on the μ = 1 curve at τ_s = 0.001 (not drawn; peak s = 0.379 at |K| = 127), |K| = 63.68 (s = 0.2546,
+box 0.0049 H) at 16² to t = 12 (223 CPU-s) fits 0.542 (+113 %, spread 0.52 between the fields) at frequency
+0.735, which is none of the operator's modes at that wavevector (1.2812, 1.2806, −0.3720 and the sound
+waves): at τ_s = 0.001 the particle-gas run does not follow the linear operator, whatever the growth rate.
 """
 
 from __future__ import annotations
