@@ -11,7 +11,7 @@ within each repeat, best of ``--repeat`` kept:
 The script prints zone-cycles/s of 1 and 2 ranks, the ratio, and ``uptime`` before and after
 (a 2-rank figure needs both cores quiet). Run alone::
 
-    flock /work/main/benchmarks/.lock python benchmarks/bench_mpi.py [--cases sound shear] [--repeat 2]
+    flock benchmarks/.lock python benchmarks/bench_mpi.py [--cases sound shear] [--repeat 2]
 """
 
 from __future__ import annotations
