@@ -117,7 +117,7 @@ def run(
     path = check_output_path(output) if output is not None else default_run_path(problem)
     rundir = run_directory(path)  # under MPI: rank 0 writes, the other ranks only read
 
-    def prepare():
+    def prepare() -> Any:
         check_ranks(prob)
         rundir.check_new(overwrite)
         check_memory(prob, cfg)
