@@ -185,7 +185,8 @@ def measure_growth(run_or_data, window: Sequence[float] | None = None, fields: S
 
 def run_params(run: str | Path):
     """``(StreamingParams, problem name)`` of a ``si-linear``/``si-settling`` run, or ``(None, name)``
-    if the run is of another problem."""
+    if the run is of another problem. The run's frame velocity (``si-settling``'s ``problem.frame``)
+    is in :func:`run_frame_shift`."""
     from ..config import load_toml
     from ..io.rundir import RunDirectory
 
@@ -217,7 +218,23 @@ def theory_for_run(run: str | Path) -> dict[str, float]:
     if params is None:
         return {}
     mode = fastest_mode(params)
-    return {"growth_rate": mode.growth_rate, "frequency": mode.frequency, "problem": name}
+    return {"growth_rate": mode.growth_rate, "frequency": mode.frequency + run_frame_shift(run, params),
+            "problem": name}
+
+
+def run_frame_shift(run: str | Path, params) -> float:
+    """``k·W``: the Doppler shift of every mode frequency in a run whose box moves at ``-W``
+    relative to the gas frame of the linear theory (``si-settling`` with ``problem.frame = "dust"``)."""
+    from ..config import load_toml
+    from ..io.rundir import RunDirectory
+
+    p = load_toml(RunDirectory(run).config_file).get("problem", {})
+    if p.get("frame", "gas") == "gas":
+        return 0.0
+    from ..problems.si_settling import frame_velocity
+
+    wx, wz = frame_velocity(p["taus"], p["mu"], float(params.vz_array[0]), p["frame"])
+    return params.kx * wx + params.kz * wz
 
 
 def modal_amplitudes(modes: dict[str, np.ndarray], params) -> tuple[np.ndarray, np.ndarray]:

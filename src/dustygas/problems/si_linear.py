@@ -123,6 +123,7 @@ def streaming_box(
     pressure_frame: str = "gas",
     cfg=None,
     linearisation: str = "consistent",
+    frame_v: tuple[float, float] = (0.0, 0.0),
 ) -> StreamingBox:
     """A 2D x-z box holding one eigenmode of the streaming instability (module docstring).
 
@@ -157,9 +158,11 @@ def streaming_box(
     taus_j, mu_j = np.atleast_1d(taus).astype(float), np.atleast_1d(mu).astype(float)
     eq = nsh_velocities_multi(taus_j, mu_j) if multi else nsh_velocities(taus, mu)
     boost = 0.0 if gas_frame else 1.0  # particle frame: every velocity + eta v_K y^
-    U = np.array([float(eq.gas_vx), float(eq.gas_vy) + boost, 0.0]) * eta_vk
-    V_j = [np.array([float(np.atleast_1d(eq.dust_vx)[j]), float(np.atleast_1d(eq.dust_vy)[j]) + boost, vz]) * eta_vk
-           for j in range(len(taus_j))]
+    wx, wz = frame_v
+    U = np.array([float(eq.gas_vx) + wx, float(eq.gas_vy) + boost, wz]) * eta_vk
+    V_j = [np.array([float(np.atleast_1d(eq.dust_vx)[j]) + wx, float(np.atleast_1d(eq.dust_vy)[j]) + boost, vz + wz])
+           * eta_vk for j in range(len(taus_j))]
+    ay = 0.5 * wx * eta_vk  # (2 - q) Omega w_x: cancels the Coriolis force of the radial boost
     # ---- gas: cell averages of the eigenmode
     x, y, z = mesh.meshgrid()
     phase = np.exp(1j * (k[0] * x + k[2] * z)) * np.ones((nz, 1, nx))
@@ -194,8 +197,9 @@ def streaming_box(
     store = ParticleStore.create(*(np.concatenate([p[i] for p in parts], axis=-1) for i in range(4)))
     mode_numbers = (1, 0, 1 if k[2] > 0 else -1)
     terms = [RotatingFrame(1.0, 1.5, relative_to_shear=True),
-             ConstantAcceleration(0.0 if gas_frame else -2.0 * eta_vk, 0.0, vz * eta_vk / taus_j[0])]
-    gas_terms = [GasConstantAcceleration(az=-mu_j[0] * vz * eta_vk / taus_j[0])] if vz != 0.0 else []
+             ConstantAcceleration(0.0 if gas_frame else -2.0 * eta_vk, ay, vz * eta_vk / taus_j[0])]
+    gas_terms = ([GasConstantAcceleration(ay=ay, az=-mu_j[0] * vz * eta_vk / taus_j[0])]
+                 if vz != 0.0 or ay != 0.0 else [])
     kwargs = dict(particle_terms=terms, gas_terms=gas_terms, mode=mode_numbers)
     if cfg is not None:
         engine = particle_engine_from_config(cfg, gas, store, list(taus_j), **kwargs)
