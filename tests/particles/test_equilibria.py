@@ -113,3 +113,33 @@ def test_stiff_heavy_dust_runs_at_the_courant_step_and_decays_at_the_exact_rate(
         measurable = dv > 1e-6 * dv0  # further down the differences of O(1) velocities are round-off
         assert measurable.sum() >= 3
         np.testing.assert_allclose(rate[measurable], 1.0 / ts, rtol=1e-6)
+
+
+@pytest.mark.parametrize("frame", ["gas", "dust"])
+def test_settling_drift_is_a_fixed_point_in_either_frame(frame):
+    """si-settling at τ_s = 0.001, μ = 0.1 (thesis Fig 4.6's smallest grain) with no perturbation
+    (amplitude 1e-300): the gas and the dust keep their velocities — the NSH drift (thesis
+    eq. 4.8), the vertical drift v̄_z = -c_s τ_s/(2τ_s² + 1) = -1e-3 c_s of eq. 4.19, and in the
+    dust frame the boost W = (-V_x, -v̄_z) held by the (2 - q) Ω W_x ŷ force (without that force
+    the gas and dust v_y would drift by 0.5 W_x t = 2.5e-6 c_s over these 200 steps) — to 1e-13 c_s."""
+    from dustygas.physics import nsh_velocities
+    from dustygas.preflight import build_engine
+
+    prob = get_problem("si-settling")
+    cfg = prob.config([], ["problem.taus=0.001", "problem.mu=0.1", "problem.k=59.7", "problem.amplitude=1e-300",
+                           f"problem.frame={frame}", "grid.nx=8", "grid.nz=8"], None)
+    eng = build_engine(prob, cfg)
+    eq = nsh_velocities(0.001, 0.1)
+    Pi, vz = 0.05, -0.001 / (2e-6 + 1)
+    wx, wz = (-float(eq.dust_vx) * Pi, -vz) if frame == "dust" else (0.0, 0.0)
+    gas_expect = np.array([float(eq.gas_vx) * Pi + wx, float(eq.gas_vy) * Pi, wz])
+    dust_expect = np.array([float(eq.dust_vx) * Pi + wx, float(eq.dust_vy) * Pi, vz + wz])
+    xc = eng.gas.mesh.centers(0)[None, None, :]
+    for _ in range(200):
+        eng.advance(eng.timestep())
+    rho, ux, uy, uz = eng.gas.primitive()
+    gas = np.array([ux, uy + 1.5 * xc, uz])
+    dust = eng.particles.vel[:, :eng.particles.n]
+    assert np.abs(gas - gas_expect[:, None, None, None]).max() < 1e-13
+    assert np.abs(dust - dust_expect[:, None]).max() < 1e-13
+    assert np.abs(rho - 1.0).max() < 1e-13
