@@ -135,6 +135,10 @@ def streaming_box(
     its own density wave (``vz`` must then be 0). ``shape`` is
     ``(nx, nz)``; ``scheme`` the gas scheme (``integrator, reconstruction, limiter, riemann,
     cfl``); ``cfg`` a configuration with a ``[particles]`` section (else the defaults).
+    ``frame_v = (W_x, W_z)`` (ηv_K) adds a uniform velocity to gas and dust, with the constant
+    acceleration ``(2 - q) Ω W_x ŷ`` on both that cancels the Coriolis force of ``W_x`` (a
+    Galilean boost of the axisymmetric box under orbital advection; modes shift by ``k·W``; see
+    :mod:`dustygas.problems.si_settling`'s ``problem.frame``).
     """
     from ..linear import StreamingParams, fastest_mode
     from ..physics import nsh_velocities, nsh_velocities_multi
