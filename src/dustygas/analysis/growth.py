@@ -295,7 +295,8 @@ def measure_modal_growth(run_or_data, params=None, window: Sequence[float] | Non
               fit_growth(t[sel & (t >= mid)], c[0, sel & (t >= mid)])]
     vectors = eigenmodes(params).vectors
     X = vectors @ c
-    remainder = np.linalg.norm(X[:, sel] - np.outer(vectors[:, 0], c[0, sel]), axis=0) / np.linalg.norm(X[:, sel], axis=0)
+    rest = X[:, sel] - np.outer(vectors[:, 0], c[0, sel])
+    remainder = np.linalg.norm(rest, axis=0) / np.linalg.norm(X[:, sel], axis=0)
     fields = {"first_half": {"growth_rate": halves[0][0], "frequency": halves[0][1]},
               "second_half": {"growth_rate": halves[1][0], "frequency": halves[1][1]},
               "remainder": {"growth_rate": float(remainder.max()), "frequency": math.nan}}
