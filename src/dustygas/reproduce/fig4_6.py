@@ -30,7 +30,8 @@ inertial wave at 3e-4 Ω at 16²; a vertical boost alone (lattice at rest vertic
 drifting radially) changes nothing (−22 % at 16²).
 Boosting by (−V_x, −v̄_z), the lattice rests on the mesh and the wave's share stays below
 0.8 % at 16² and 0.2 % at 32² (the partner's below 2 % and 0.4 %): 16² grows at 0.1175
-(−5.0 %), 32² at 0.12235 (−1.15 %; the eight fields' mean 0.12276, −0.83 %, fields within 1.0 %; the window's halves agree to 5e-5). The near-degenerate partner
+(−5.0 %), 32² at 0.12235 (−1.15 %; the eight fields' mean 0.12276, −0.83 %, fields within 1.0 %;
+the window's halves agree to 5e-5). The near-degenerate partner
 (ω = 0.9767 − 0.124i, eigenvector at |cos| = 0.95 to the growing one) is why the modal fit is
 the better estimator here.
 """
