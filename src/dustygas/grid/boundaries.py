@@ -344,7 +344,8 @@ def fill_ghosts_threaded(u, t, lay, sp, bc, nthreads) -> None:
     """:func:`fill_ghosts` with the items of each axis spread over ``nthreads`` chunks where it
     pays: in 3D, and for the remapped radial ghosts of a 2D x-y shearing box with at least
     :data:`PARALLEL_REMAP_NY` cells along y (otherwise a parallel region costs more than the
-    fill: in a 2D x-z box an item is a few cells). Inlined, so that its loops are parallel regions of the integrator that calls it
+    fill: in a 2D x-z box an item is a few cells). Inlined, so that its loops are parallel
+    regions of the integrator that calls it
     (:func:`~dustygas.grid.integrator.advance_gas`, :func:`~dustygas.grid.ctu.ctu_stage`);
     the items are independent, so the result does not depend on ``nthreads``.
     """
