@@ -73,6 +73,8 @@ BOUNDARY_KINDS = {"periodic": PERIODIC, "shear-periodic": SHEAR_PERIODIC, "outfl
 #: 2D x-y boxes with at least this many cells along y remap their radial ghosts and fluxes in
 #: parallel (measured: ~3.5 ns per remapped value, ~2 us per parallel region)
 PARALLEL_REMAP_NY = 100
+#: the x ghosts of a cell field (:func:`fill_field_ghosts`) are filled in parallel from this many values on
+FIELD_PARALLEL_VALUES = 16384
 
 
 class Boundaries(NamedTuple):
@@ -342,7 +344,8 @@ def fill_ghosts_threaded(u, t, lay, sp, bc, nthreads) -> None:
     """:func:`fill_ghosts` with the items of each axis spread over ``nthreads`` chunks where it
     pays: in 3D, and for the remapped radial ghosts of a 2D x-y shearing box with at least
     :data:`PARALLEL_REMAP_NY` cells along y (otherwise a parallel region costs more than the
-    fill). Inlined, so that its loops are parallel regions of the integrator that calls it
+    fill: in a 2D x-z box an item is a few cells). Inlined, so that its loops are parallel
+    regions of the integrator that calls it
     (:func:`~dustygas.grid.integrator.advance_gas`, :func:`~dustygas.grid.ctu.ctu_stage`);
     the items are independent, so the result does not depend on ``nthreads``.
     """
@@ -350,7 +353,7 @@ def fill_ghosts_threaded(u, t, lay, sp, bc, nthreads) -> None:
     for back in range(3):
         axis = 2 - back
         nlines = ghost_lines(axis, lay, bc)
-        if nlines > 1 and (lay.nz > 1 or (axis == 0 and shearing and lay.ny >= PARALLEL_REMAP_NY)):
+        if nlines > 1 and ((lay.ny > 1 and lay.nz > 1) or (axis == 0 and shearing and lay.ny >= PARALLEL_REMAP_NY)):
             nchunk = min(nlines, nthreads)
             for c in prange(nchunk):
                 fill_ghost_lines(u, axis, c * nlines // nchunk, (c + 1) * nlines // nchunk, t, lay, sp, bc)
@@ -365,14 +368,15 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> float:
     (multiply by ``dt dy dz`` for the mass that crossed it).
 
     The items are spread over ``nthreads`` chunks in 3D and in 2D x-y boxes with at least
-    :data:`PARALLEL_REMAP_NY` cells along y (inlined, like :func:`fill_ghosts_threaded`); they
+    :data:`PARALLEL_REMAP_NY` cells along y (inlined, like :func:`fill_ghosts_threaded`; in a 2D
+    x-z box an item is one cell and a parallel region would cost more than the work); they
     are independent and the planes are summed in order, so the result does not depend on
     ``nthreads``.
     """
     nz = lay.nz
     plane_flux = np.zeros(nz)
     nitems = 4 * nz
-    if nz > 1 or lay.ny >= PARALLEL_REMAP_NY:
+    if (nz > 1 and lay.ny > 1) or lay.ny >= PARALLEL_REMAP_NY:
         nchunk = min(nitems, nthreads)
         for c in prange(nchunk):
             correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, c * nitems // nchunk, (c + 1) * nitems // nchunk,
@@ -443,25 +447,40 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
             f[k, hi] = f[k, shi]
     if gx > 0:  # rows in parallel: a ghost column copies (or remaps) domain columns of its row only
         shear = kinds[0] == FIELD_SHEAR and ny > 1
-        for k in prange(k_lo, k_hi):
-            col = np.empty(ny)
-            out = np.empty(ny)
-            work = np.empty(4 * ny + 19)
-            for m in range(gx):
-                lo, hi, slo, shi = _field_ghost_pair(kinds[0], m, nx, gx)
-                if not shear:
-                    for j in range(NY):
-                        for v in range(nvar):
-                            f[k, j, lo, v] = f[k, j, slo, v]
-                            f[k, j, hi, v] = f[k, j, shi, v]
-                    continue
-                for side in range(2):
-                    dst = lo if side == 0 else hi
-                    src = slo if side == 0 else shi
-                    s = shift if side == 0 else -shift
+        nk = k_hi - k_lo
+        if shear or nk * NY * nvar * gx >= FIELD_PARALLEL_VALUES:
+            nchunk = min(nk, 64)
+            for c in prange(nchunk):
+                _field_x_ghost_rows(f, gx, gy, kinds[0], shear, shift, remap_method, remap_limiter,
+                                    k_lo + c * nk // nchunk, k_lo + (c + 1) * nk // nchunk)
+        elif nk > 0:  # a few values per row (2D x-z): a parallel region would cost more than the copies
+            _field_x_ghost_rows(f, gx, gy, kinds[0], shear, shift, remap_method, remap_limiter, k_lo, k_hi)
+
+
+@njit(cache=True, error_model="numpy")
+def _field_x_ghost_rows(f, gx, gy, kind, shear, shift, remap_method, remap_limiter, k0, k1) -> None:
+    """The x ghosts of :func:`fill_field_ghosts` in the padded z rows ``k0 .. k1-1``."""
+    NZ, NY, NX, nvar = f.shape
+    ny, nx = NY - 2 * gy, NX - 2 * gx
+    col = np.empty(ny)
+    out = np.empty(ny)
+    work = np.empty(4 * ny + 19)
+    for k in range(k0, k1):
+        for m in range(gx):
+            lo, hi, slo, shi = _field_ghost_pair(kind, m, nx, gx)
+            if not shear:
+                for j in range(NY):
                     for v in range(nvar):
-                        for j in range(ny):
-                            col[j] = f[k, gy + j, src, v]
-                        shift_column(col, ny, s, remap_method, remap_limiter, out, work)
-                        for j in range(NY):
-                            f[k, j, dst, v] = out[(j - gy) % ny]
+                        f[k, j, lo, v] = f[k, j, slo, v]
+                        f[k, j, hi, v] = f[k, j, shi, v]
+                continue
+            for side in range(2):
+                dst = lo if side == 0 else hi
+                src = slo if side == 0 else shi
+                s = shift if side == 0 else -shift
+                for v in range(nvar):
+                    for j in range(ny):
+                        col[j] = f[k, gy + j, src, v]
+                    shift_column(col, ny, s, remap_method, remap_limiter, out, work)
+                    for j in range(NY):
+                        f[k, j, dst, v] = out[(j - gy) % ny]

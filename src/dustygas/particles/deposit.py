@@ -28,6 +28,8 @@ __all__ = ["sort_images", "image_values", "pull_deposit", "filter_field", "ROW_C
 
 #: rows are split into this many chunks for the threads (more than threads: a balanced split)
 ROW_CHUNKS = 64
+#: the length of the pieces of a row (elements) that the z pass of :func:`filter_field` hands to threads
+FILTER_PIECE = 64
 
 
 @njit(cache=True, error_model="numpy")
@@ -227,24 +229,31 @@ def filter_field(f, active, k_lo, k_hi) -> None:
     ``k_lo + 2 .. k_hi - 3`` (the rest of the field is not needed: a thin dust layer).
 
     The passes x, y, z follow one another (each filters the output of the one before); x and y
-    run plane by plane in one parallel region, z over blocks of the (y, x) rows in a second.
+    run over chunks of planes in one parallel region, z over pieces of the (y, x) rows in a second.
     Every element is the same expression of the same inputs whatever the split.
     """
     NZ, NY, NX, nv = f.shape
     L = NX * nv
     f3 = f.reshape((NZ, NY, L))
-    if active[0] or active[1]:
-        for k in prange(k_lo, k_hi):
-            ring = np.empty((3, L))
-            if active[0]:
-                for j in range(NY):
-                    _filter_x(f3[k, j], ring[0], nv)
-            if active[1]:
-                _filter_across(f3, 1, k, 2, NY - 2, 0, L, ring)
+    if (active[0] or active[1]) and k_hi > k_lo:
+        nk = k_hi - k_lo
+        nchunk = min(nk, ROW_CHUNKS)
+        for c in prange(nchunk):
+            ring = np.empty((3, L))  # one scratch per chunk of planes
+            for k in range(k_lo + c * nk // nchunk, k_lo + (c + 1) * nk // nchunk):
+                if active[0]:
+                    for j in range(NY):
+                        _filter_x(f3[k, j], ring[0], nv)
+                if active[1]:
+                    _filter_across(f3, 1, k, 2, NY - 2, 0, L, ring)
     if active[2]:
         lo, hi = max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
         if hi > lo:
-            nq = max(1, min(ROW_CHUNKS // NY, L // 64))  # pieces of a row: enough chunks in 2D (NY = 1)
+            # pieces of a row, of about FILTER_PIECE elements or more (shorter ones cost more in slicing
+            # than they filter); in 2D (NY = 1) a multiple of 4 of them, for an even split over 2 or 4 threads
+            nq = max(1, min(ROW_CHUNKS // NY, L // FILTER_PIECE))
+            if NY == 1:
+                nq = 4 * ((nq + 3) // 4)
             nchunk = NY * nq
             for c in prange(nchunk):
                 j = c // nq

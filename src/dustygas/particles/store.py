@@ -164,6 +164,12 @@ def compact(pos, vel, species, pid, mass, n, keep) -> int:
     return m
 
 
+@njit(inline="always")
+def _out_of_order(keys, pid, p):
+    """Particles ``p - 1`` and ``p`` are not in canonical order (by cell, then by pid)."""
+    return keys[p] < keys[p - 1] or (keys[p] == keys[p - 1] and pid[p] < pid[p - 1])
+
+
 @njit(cache=True, parallel=True, error_model="numpy")
 def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork,
                  kernel, R, wts) -> int:
@@ -179,17 +185,20 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
     ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
     pass, one copy-back pass that also weighs the particles; when the order holds, as at most steps
-    in 2D, a pass of its own). The histogram and its prefix sum are serial (``O(N + ncell)``);
-    computing the keys, the weights, permuting the arrays and ordering each cell by ``pid`` run in
-    parallel.
+    in 2D, a pass of its own). When the order holds, ``cell_start`` is read off the sorted keys in
+    that pass; otherwise the histogram and its prefix sum are serial (``O(N + ncell)``). Computing
+    the keys and checking the order, the weights, permuting the arrays and ordering each cell by
+    ``pid`` run in parallel.
     """
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     ncell = nx * ny * nz
     ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
     nchunk = min(max(n, 1), 64)
     first_bad = np.full(nchunk, -1, dtype=np.int64)
+    unordered = np.zeros(nchunk, dtype=np.int64)  # per chunk: a particle out of canonical order
     for c in prange(nchunk):
-        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+        p0, p1 = c * n // nchunk, (c + 1) * n // nchunk
+        for p in range(p0, p1):
             ok = True
             for a in range(3):
                 if not (np.isfinite(pos[a, p]) and np.isfinite(vel[a, p])):
@@ -203,27 +212,35 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
             j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
             k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
             keys[p] = (k * ny + j) * nx + i
+        for p in range(p0 + 1, p1):  # the pairs (p - 1, p) inside the chunk
+            if _out_of_order(keys, pid, p):
+                unordered[c] = 1
+                break
+    ordered = True  # already canonical (most steps: few particles change cells)
     for c in range(nchunk):
         if first_bad[c] >= 0:
             return first_bad[c]
+        p = c * n // nchunk  # and the pair across the chunk boundary
+        if unordered[c] or (0 < p < n and _out_of_order(keys, pid, p)):
+            ordered = False
+    if ordered:  # cell_start from the sorted keys, and the weights, in parallel
+        for c in prange(nchunk):
+            p0, p1 = c * n // nchunk, (c + 1) * n // nchunk
+            for p in range(p0, p1):
+                for cell in range(keys[p - 1] + 1 if p > 0 else 0, keys[p] + 1):
+                    cell_start[cell] = p
+                stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
+                stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
+                stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
+        for cell in range(keys[n - 1] + 1 if n > 0 else 0, ncell + 1):
+            cell_start[cell] = n
+        return -1
     for c in range(ncell + 1):
         cell_start[c] = 0
     for p in range(n):
         cell_start[keys[p] + 1] += 1
     for c in range(ncell):
         cell_start[c + 1] += cell_start[c]
-    ordered = True  # already canonical (most steps: few particles change cells)
-    for p in range(1, n):
-        if keys[p] < keys[p - 1] or (keys[p] == keys[p - 1] and pid[p] < pid[p - 1]):
-            ordered = False
-            break
-    if ordered:
-        for c in prange(nchunk):
-            for p in range(c * n // nchunk, (c + 1) * n // nchunk):
-                stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
-                stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
-                stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
-        return -1
     # stable placement: order[slot] = old index
     for c in range(ncell):
         ptr[c] = cell_start[c]

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .density import solve_one_smoothing_length
+from .density import DENSITY_CHUNK, row_buffers, solve_one_smoothing_length
 from .dust.two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pair
 from .forces import NPACK, pack_row, pressure_pair
 from .kernels import kernel_dshape, kernel_shape
@@ -50,11 +50,16 @@ def active_densities(act, pos, mass, h_guess, h_search, same_start, same_index, 
                      length, periodic, tol, maxiter, h_out, rho_out, omega_out, status, iterations):
     """Smoothing lengths and densities (thesis eq. 3.1) of the active particles from their same-species
     rows (:func:`dustygas.sph.density.solve_one_smoothing_length`); outputs per slot."""
-    for i in prange(act.shape[0]):
-        a = act[i]
-        h_out[i], rho_out[i], omega_out[i], status[i], iterations[i] = solve_one_smoothing_length(
-            pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index[same_start[i]:],
-            same_count[i], pos, mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter)
+    n = act.shape[0]
+    nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
+    for c in prange(nchunk):
+        i0, i1 = c * DENSITY_CHUNK, min(n, (c + 1) * DENSITY_CHUNK)
+        r, m = row_buffers(same_count, i0, i1)
+        for i in range(i0, i1):
+            a = act[i]
+            h_out[i], rho_out[i], omega_out[i], status[i], iterations[i] = solve_one_smoothing_length(
+                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index[same_start[i]:],
+                same_count[i], pos, mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
 
 
 # --------------------------------------------------------------------------- hydrodynamics

@@ -32,11 +32,14 @@ from .kernels import kernel_shape
 from .neighbours import minimum_image
 
 __all__ = ["H_CONVERGED", "H_NEEDS_NEIGHBOURS", "H_NOT_CONVERGED", "solve_smoothing_lengths",
-           "solve_one_smoothing_length", "gasoline2_correction"]
+           "solve_one_smoothing_length", "row_buffers", "gasoline2_correction", "DENSITY_CHUNK"]
 
 H_CONVERGED = 0
 H_NEEDS_NEIGHBOURS = 1  # the root lies beyond the radius the neighbour list is complete for
 H_NOT_CONVERGED = 2
+
+#: particles per work item of the parallel density solve (each allocates its scratch rows once)
+DENSITY_CHUNK = 64
 
 
 @njit(parallel=True, cache=True)
@@ -48,19 +51,35 @@ def solve_smoothing_lengths(pos, mass, h, index, count, h_search, shape, norm, r
     ``status`` (``H_*`` codes) and ``iterations`` are outputs. The neighbour list must be complete
     for ``h_search`` (every neighbour with :math:`r < R h^{\\rm search}_a`).
     """
-    for a in prange(pos.shape[0]):
-        h[a], rho[a], omega[a], status[a], iterations[a] = solve_one_smoothing_length(
-            pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], index[a], count[a], pos, mass, shape,
-            norm, ndim, hfact, length, periodic, tol, maxiter)
+    n = pos.shape[0]
+    nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
+    for c in prange(nchunk):
+        a0, a1 = c * DENSITY_CHUNK, min(n, (c + 1) * DENSITY_CHUNK)
+        r, m = row_buffers(count, a0, a1)
+        for a in range(a0, a1):
+            h[a], rho[a], omega[a], status[a], iterations[a] = solve_one_smoothing_length(
+                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], index[a], count[a], pos, mass, shape,
+                norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
+
+
+@njit(inline="always")
+def row_buffers(count, a0, a1):
+    """Scratch ``(r, m)`` for the longest of the rows ``count[a0:a1]`` (one allocation per chunk of
+    particles, not per particle: allocations inside a parallel region serialise the threads)."""
+    longest = 0
+    for a in range(a0, a1):
+        longest = max(longest, count[a])
+    return np.empty(longest), np.empty(longest)
 
 
 @njit(inline="always")
 def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, pos, mass, shape, norm, ndim, hfact,
-                               length, periodic, tol, maxiter):
+                               length, periodic, tol, maxiter, r, m):
     """Newton-Raphson with bisection fallback for one particle at ``(xa, ya, za)`` of mass ``ma``
     whose neighbours are ``pos[row[:n_row]]`` (complete within :math:`R h_{\\rm search}`).
 
-    Returns ``(h, rho, omega, status, iterations)`` (module docstring); shared by
+    ``r``, ``m``: scratch arrays of at least ``n_row`` entries (:func:`row_buffers`). Returns
+    ``(h, rho, omega, status, iterations)`` (module docstring); shared by
     :func:`solve_smoothing_lengths` and the active-particle kernels of individual time steps.
     """
     f0 = kernel_shape(shape, 0.0)[0]
@@ -72,8 +91,7 @@ def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, po
     st = H_NOT_CONVERGED
     om = 1.0
     it = 0
-    r = np.empty(n_row)  # the distances and masses of the row, gathered once for every iteration
-    m = np.empty(n_row)
+    # the distances and masses of the row, gathered once for every iteration
     for k in range(n_row):
         b = row[k]
         dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])

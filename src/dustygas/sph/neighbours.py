@@ -43,6 +43,9 @@ from .pairs import candidate_buffers, minimum_image, scan_candidates
 
 __all__ = ["Box", "NeighbourList", "NeighbourFinder", "minimum_image"]
 
+#: the cell search hands out contiguous chunks of cells (each allocates its candidate buffers once)
+SEARCH_CHUNKS = 256
+
 
 @dataclass(frozen=True)
 class Box:
@@ -189,43 +192,63 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
         if periodic[d] and n == 1:
             inv_l[d] = 1.0 / length[d]
     r2 = radius * radius
-    for c in prange(nx * ny * nz):
-        if qstart[c] == qstart[c + 1]:
-            continue
-        cx = c % nx
-        cy = (c // nx) % ny
-        cz = c // (nx * ny)
-        xlo, xhi = _range(cx, nx, periodic[0])
-        ylo, yhi = _range(cy, ny, periodic[1])
-        zlo, zhi = _range(cz, nz, periodic[2])
-        m = 0
-        for oz in range(zlo, zhi + 1):
-            kz = (cz + oz) % nz
-            for oy in range(ylo, yhi + 1):
-                ky = (cy + oy) % ny
-                for ox in range(xlo, xhi + 1):
-                    kx = (cx + ox) % nx
-                    k = (kz * ny + ky) * nx + kx
-                    m += sstart[k + 1] - sstart[k]
-        px, py, pz, ph2, pid, d2 = candidate_buffers(m)
-        j = 0
-        for oz in range(zlo, zhi + 1):
-            kz, sz = _image_cell(cz + oz, nz, length[2])
-            for oy in range(ylo, yhi + 1):
-                ky, sy = _image_cell(cy + oy, ny, length[1])
-                for ox in range(xlo, xhi + 1):
-                    kx, sx = _image_cell(cx + ox, nx, length[0])
-                    k = (kz * ny + ky) * nx + kx
-                    for i in range(sstart[k], sstart[k + 1]):
-                        px[j] = spos[i, 0] + sx
-                        py[j] = spos[i, 1] + sy
-                        pz[j] = spos[i, 2] + sz
-                        ph2[j] = sh[i] * sh[i]
-                        pid[j] = sorder[i]
-                        j += 1
-        for iq in range(qstart[c], qstart[c + 1]):
-            scan_candidates(qorder[iq], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
-                            index, count, overlap)
+    ncells = nx * ny * nz
+    nchunk = min(ncells, SEARCH_CHUNKS)
+    for t in prange(nchunk):
+        c0, c1 = t * ncells // nchunk, (t + 1) * ncells // nchunk
+        longest = 0  # one set of candidate buffers per chunk of cells: no allocation per cell
+        for c in range(c0, c1):
+            if qstart[c] != qstart[c + 1]:
+                longest = max(longest, _candidate_count(c, nx, ny, nz, periodic, sstart))
+        px, py, pz, ph2, pid, d2 = candidate_buffers(longest)
+        for c in range(c0, c1):
+            if qstart[c] == qstart[c + 1]:
+                continue
+            cx = c % nx
+            cy = (c // nx) % ny
+            cz = c // (nx * ny)
+            xlo, xhi = _range(cx, nx, periodic[0])
+            ylo, yhi = _range(cy, ny, periodic[1])
+            zlo, zhi = _range(cz, nz, periodic[2])
+            j = 0
+            for oz in range(zlo, zhi + 1):
+                kz, sz = _image_cell(cz + oz, nz, length[2])
+                for oy in range(ylo, yhi + 1):
+                    ky, sy = _image_cell(cy + oy, ny, length[1])
+                    for ox in range(xlo, xhi + 1):
+                        kx, sx = _image_cell(cx + ox, nx, length[0])
+                        k = (kz * ny + ky) * nx + kx
+                        for i in range(sstart[k], sstart[k + 1]):
+                            px[j] = spos[i, 0] + sx
+                            py[j] = spos[i, 1] + sy
+                            pz[j] = spos[i, 2] + sz
+                            ph2[j] = sh[i] * sh[i]
+                            pid[j] = sorder[i]
+                            j += 1
+            for iq in range(qstart[c], qstart[c + 1]):
+                scan_candidates(qorder[iq], qpos, qh, j, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
+                                index, count, overlap)
+
+
+@njit(inline="always")
+def _candidate_count(c, nx, ny, nz, periodic, sstart):
+    """Number of sources in the 3^d cells around cell ``c``."""
+    cx = c % nx
+    cy = (c // nx) % ny
+    cz = c // (nx * ny)
+    xlo, xhi = _range(cx, nx, periodic[0])
+    ylo, yhi = _range(cy, ny, periodic[1])
+    zlo, zhi = _range(cz, nz, periodic[2])
+    m = 0
+    for oz in range(zlo, zhi + 1):
+        kz = (cz + oz) % nz
+        for oy in range(ylo, yhi + 1):
+            ky = (cy + oy) % ny
+            for ox in range(xlo, xhi + 1):
+                kx = (cx + ox) % nx
+                k = (kz * ny + ky) * nx + kx
+                m += sstart[k + 1] - sstart[k]
+    return m
 
 
 @njit(parallel=True, cache=True)
