@@ -94,7 +94,8 @@ def surface_density_figure(snaps: Sequence[Snapshot], png: Path, title: str = ""
     for s in every:
         sig = surface_density(s.rho_p, s.dx[2])
         amp, kx, ky = fourier_power(sig, s.box[0], s.box[1])
-        rows.append((s.time / ORBIT, *dominant_wavevector(amp, kx, ky), float(sig.max() / sig.mean())))
+        nonaxi = float(amp[np.abs(ky) > 0].max() / sig.mean() * np.sqrt(len(s.mass)))
+        rows.append((s.time / ORBIT, *dominant_wavevector(amp, kx, ky), float(sig.max() / sig.mean()), nonaxi))
     with house_style():
         fig, axes = new_figure(len(snaps), 2, width=8.4, height=3.4 * len(snaps))
         axes = np.atleast_2d(axes)
@@ -130,7 +131,9 @@ def surface_density_figure(snaps: Sequence[Snapshot], png: Path, title: str = ""
                 Column("kx", arr[:, 1], "1/H", "k_x of the largest FFT peak (folded to k_x >= 0)"),
                 Column("ky", arr[:, 2], "1/H", "k_y of the largest FFT peak"),
                 Column("theta_k", arr[:, 3], "deg", "arctan(k_y/k_x) of the peak (0: axisymmetric)"),
-                Column("sigma_max_over_mean", arr[:, 4], "1", "max of Sigma_d over its mean")]
+                Column("sigma_max_over_mean", arr[:, 4], "1", "max of Sigma_d over its mean"),
+                Column("nonaxisymmetric_over_noise", arr[:, 5], "1",
+                       "largest |FFT| with k_y != 0 over the particle shot noise <Sigma_d>/sqrt(N)")]
         paths = save_figure(fig, png, cols, title or "dust surface density and its 2D FFT",
                             "Sigma_d = sum_z rho_p dz; FFT of Sigma_d - <Sigma_d>, amplitudes over the cell count")
     h5 = Path(png).with_suffix(".h5")
