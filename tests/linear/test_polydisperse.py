@@ -22,7 +22,16 @@ in their papers):
 
 Published trend (Krapp et al. 2019; Zhu & Yang 2021; Paardekooper et al. 2020): at μ ≲ 1 the
 growth rate of a wide size distribution falls as the number of species grows (no fast growth in
-the continuum limit); at μ > 1 it converges to a finite value.
+the continuum limit); at μ > 1 it converges to a finite value. Zhu & Yang (2021, MNRAS 501, 467;
+the abstract of arXiv:2008.01119) state it with numbers: "With a wide range of dust sizes present
+in the disc (e.g. T_s,min ≲ 10⁻³), the growth rate in the slow-growth regime decreases as more dust
+species are considered. With a narrow range of dust sizes (e.g. T_s,max/T_s,min = 5), on the other
+hand, the growth rate in most of the ε-T_s,max space is converged with increasing dust species, but
+the fast and the slow growth regimes remain clearly separated." Their conventions, used in the
+``zhu_yang`` tests below: N species on logarithmic bins of [T_s,min, T_s,max], each with its bin's
+mass of n(a) ∝ a^-q (q = 3.5, ``beta = -3.5``), fixed stopping times (``drag="consistent"``), the
+N species' own drift (``rule="bins"``), and the growth rate maximised over (K_x, K_z); here over
+an 11 × 11 grid, half a decade apart, of [0.1, 10⁴]² (their window is not in the abstract).
 """
 
 import numpy as np
@@ -121,3 +130,53 @@ def test_species_conserve_the_dust_mass_and_bad_input():
         species(dist, 4, "midpoint")
     with pytest.raises(UserError, match="positive integer"):
         species(dist, 0)
+
+
+ZY21_WINDOW = np.logspace(-1.0, 4.0, 11)  # K_x = K_z grid, half a decade apart
+
+
+def _zy21_fastest(mu: float, taus_min: float, taus_max: float, n: int) -> float:
+    """Zhu & Yang (2021)'s growth rate: the N-species bins of an MRN distribution, fixed stopping
+    times, maximised over the (K_x, K_z) window ``ZY21_WINDOW``² (compiled QR, vectorised)."""
+    taus, mu_j, _ = species(PowerLawSizes(mu=mu, taus_min=taus_min, taus_max=taus_max), n, "bins")
+    kx, kz = np.meshgrid(ZY21_WINDOW, ZY21_WINDOW, indexing="ij")
+    s = growth_rate(taus=taus[:, None, None], mu=mu_j[:, None, None], kx=kx, kz=kz, species_axis=0)
+    return float(s.max())
+
+
+def test_zhu_yang_2021_narrow_distributions_converge_and_the_regimes_stay_apart():
+    """T_s,max/T_s,min = 5 (Zhu & Yang 2021's narrow range). Fast regime, ε = 3 on [0.02, 0.1] and
+    ε = 1 on [0.002, 0.01]: N = 8 -> 16 changes s by -0.52 % (0.46479 -> 0.46236) and -1.38 %
+    (0.37292 -> 0.36778), converged within 3 %. The slow regime, ε = 0.5 on [0.02, 0.1], grows at
+    s = 0.00232 at N = 16, 160 times slower than the slower fast case: clearly separated (< 1/50).
+    About 1 CPU-s."""
+    fast = []
+    for mu, lo in ((3.0, 0.02), (1.0, 0.002)):
+        s8, s16 = (_zy21_fastest(mu, lo, 5 * lo, n) for n in (8, 16))
+        assert abs(s16 / s8 - 1) <= 0.03, (mu, s8, s16)
+        assert s16 > 0.3
+        fast.append(s16)
+    slow = _zy21_fastest(0.5, 0.02, 0.1, 16)
+    assert 0 < slow < min(fast) / 50, (slow, fast)
+
+
+def test_zhu_yang_2021_wide_distribution_in_the_slow_regime_falls_with_n():
+    """T_s on [10⁻⁴, 0.1] (T_s,min ≲ 10⁻³: Zhu & Yang 2021's wide range), ε = 0.5 (slow regime):
+    s = 0.05121, 0.02251, 0.01033 for N = 4, 8, 16 (each doubling x 0.44, x 0.46 < 0.6)."""
+    s = [_zy21_fastest(0.5, 1e-4, 0.1, n) for n in (4, 8, 16)]
+    assert s[1] < 0.6 * s[0] and s[2] < 0.6 * s[1], s
+
+
+@pytest.mark.slow
+def test_zhu_yang_2021_narrow_distribution_converges_in_the_slow_regime_once_n_is_large():
+    """The narrow range in the slow regime, ε = 0.5 on [0.02, 0.1]: s first halves with every
+    doubling of N (the N = 4 .. 16 species each resonate alone), then converges as the bins resolve
+    the resonance: s = 2.315e-3, 1.392e-3, 1.225e-3, 1.141e-3 for N = 16, 32, 64, 128, successive
+    ratios 0.601, 0.880, 0.932 (Zhu & Yang 2021: "converged with increasing dust species"). And
+    T_s,max > 1, ε = 0.3 on [2, 10]: N = 16 -> 32 changes s by -0.39 % (0.051860 -> 0.051657).
+    About 115 CPU-s (N = 128: a 516² eigenproblem at 121 wavenumbers)."""
+    s = np.array([_zy21_fastest(0.5, 0.02, 0.1, n) for n in (16, 32, 64, 128)])
+    ratios = s[1:] / s[:-1]
+    assert np.all(np.diff(ratios) > 0) and ratios[0] < 0.7 and ratios[-1] > 0.9, (s, ratios)
+    s16, s32 = (_zy21_fastest(0.3, 2.0, 10.0, n) for n in (16, 32))
+    assert abs(s32 / s16 - 1) <= 0.02, (s16, s32)
