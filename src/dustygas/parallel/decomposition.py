@@ -10,8 +10,8 @@ neighbour fills its ghosts.
 Phase-one limits, refused with a one-line error rather than run wrongly: the radial axis of a
 shear-periodic box and the azimuthal axis of a box with shear-periodic boundaries or orbital
 advection are not split (the sliding radial images, the radial flux correction and the
-orbital-advection remap work on whole x-y planes); a box with hydrostatic z boundaries is not
-split in z.
+orbital-advection remap work on whole x-y planes). A box with hydrostatic z boundaries is split
+in z like any other: its end blocks fill those ghosts with the heights of the whole mesh.
 """
 
 from __future__ import annotations
@@ -43,8 +43,6 @@ def unsplittable_axes(boundaries: tuple[str, str, str], orbital_advection: bool,
             out[1] = "shear-periodic x boundaries (the sliding images remap whole y columns)"
     if orbital_advection and active[1]:
         out[1] = "orbital advection (it remaps whole y columns)"
-    if boundaries[2] == "hydrostatic" and active[2]:
-        out[2] = "hydrostatic z boundaries"
     return out
 
 
@@ -189,6 +187,11 @@ class BlockMesh(Mesh):
         g = self.global_mesh
         return tuple(lo + i0 * d if n > 1 else 0.0
                      for lo, i0, d, n in zip(g.lower, self.offset, g.dx, self.shape))  # type: ignore[return-value]
+
+    @property
+    def origin(self) -> tuple[float, float, float]:
+        """Lower corner of the whole mesh."""
+        return self.global_mesh.lower
 
     @property
     def offsets(self):

@@ -156,12 +156,19 @@ class DistributedGridEngine:
 
     def advance(self, dt: float) -> None:
         """One step: for each stage, the halo exchange of its input, then the compiled stage."""
+        for s in range(self.local.stage_count):
+            self.advance_stage(s, dt)
+
+    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None) -> None:
+        """:meth:`GridEngine.advance_stage <dustygas.grid.engine.GridEngine.advance_stage>` of the
+        block (``ext``: the block's source), after the halo exchange of the stage's input."""
         local = self.local
-        kept = local.budget[self._inner_z_budget].copy()
-        for s in range(local.stage_count):
-            self.halo.fill(local.stage_input(s))
-            local.advance_stage(s, dt)
-        local.budget[self._inner_z_budget] = kept  # the flux through a block face is not lost
+        if stage == 0:
+            self._kept = local.budget[self._inner_z_budget].copy()
+        self.halo.fill(local.stage_input(stage))
+        local.advance_stage(stage, dt, ext)
+        if stage == local.stage_count - 1:
+            local.budget[self._inner_z_budget] = self._kept  # the flux through a block face is not lost
 
     def history(self) -> dict[str, float]:
         """:meth:`GridEngine.history` of the gathered box (the same on every rank)."""
