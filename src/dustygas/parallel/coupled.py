@@ -34,10 +34,17 @@ import numpy as np
 from ..errors import UserError
 from ..particles.store import ParticleStore
 from ..particles.terms import GasMeshAcceleration, MeshAcceleration
+from .decomposition import balanced_cuts
 from .gas import DistributedGridEngine
 from .particles import BlockGas, BlockParticleEngine, z_blocks
 
-__all__ = ["DistributedParticleEngine", "distribute"]
+__all__ = ["DistributedParticleEngine", "distribute", "PARTICLE_WEIGHT"]
+
+#: the modelled cost of a particle relative to a cell in one coupled step, which the z cuts
+#: balance: in the 3D box (32³, one particle per cell, one thread) the per-particle passes (two
+#: deposits, gather and kick, sort, stencil, exchange, images) took 22 ms per step and the gas
+#: 20 ms (benchmarks/RESULTS.md, 2026-12-02 13:45), so one particle costs about one cell
+PARTICLE_WEIGHT = 1.0
 
 
 def distribute(serial, comm=None) -> "DistributedParticleEngine":
@@ -65,40 +72,62 @@ class DistributedParticleEngine:
         mesh = serial.gas.mesh
         if mesh.shape[2] == 1:
             raise UserError(f"mpi ranks={self.size}: particles split the z axis only, and this mesh has nz = 1")
-        self.gas = DistributedGridEngine(mesh, comm=comm, layout=(1, 1, self.size), **serial.gas.options)
-        dec = self.gas.decomposition
-        nzb = dec.block_shape[2]
-        self.cuts = np.arange(self.size + 1, dtype=np.int64) * nzb
-        self.block = dec.coords(self.rank)[2]
-        ranks = [dec.rank_of((0, 0, b)) for b in range(self.size)]
-        periodic_z = serial.geometry.boundaries[2] in ("periodic", "shear-periodic")
-        arrays, attrs = serial.checkpoint()
-        options = dict(serial.options, mode=None)
-        mine = self._owned(arrays["particles/pos"], serial)
-        parts = self._particles(arrays, mine)
-        self.local = BlockParticleEngine(BlockGas(self.gas), parts, comm, self.cuts, self.block, ranks, periodic_z,
-                                         **options)
+        self.serial_options = (serial.gas.options, dict(serial.options, mode=None), serial._sp,
+                               serial.geometry.boundaries[2] in ("periodic", "shear-periodic"))
+        self.min_rows = max(mesh.nghost, serial._R + 2)
         self.whole = serial if self.rank == 0 else None
-        if self.rank == 0:
-            self.gas.whole = serial.gas
         self.mesh = mesh
         self.work_units = mesh.ncells
         self._version = 0
         self._gathered = -1
         self._loads: list[int] = []
         self._messages: list[str] = []
-        self._restore_blocks(arrays, attrs)
+        arrays, attrs = serial.checkpoint()
+        self._build(arrays, attrs)
         self.t, self.cycle = serial.t, serial.cycle
 
     # ------------------------------------------------------------------ distribution
-    def _owned(self, pos: np.ndarray, engine) -> np.ndarray:
-        """Which of the particles at ``pos`` (3, N) this rank's block holds."""
+    def _rows_of(self, pos: np.ndarray, cuts: np.ndarray) -> np.ndarray:
+        """The block (of ``cuts``) of each particle at ``pos`` (3, N): :func:`~.particles.z_blocks`."""
         pos = np.ascontiguousarray(pos, dtype=np.float64)
         n = pos.shape[1]
         out = np.zeros(n, dtype=np.int64)
-        sp = engine._sp
-        z_blocks(pos, n, sp.z0, sp.dz, int(self.cuts[-1]), self.cuts, np.zeros(n, dtype=np.int64), out)
-        return (out == self.block) | ((out == -2) & (self.rank == 0))
+        sp = self.serial_options[2]
+        z_blocks(pos, n, sp.z0, sp.dz, int(cuts[-1]), cuts, np.zeros(n, dtype=np.int64), out)
+        return out
+
+    def _cuts(self, pos: np.ndarray) -> np.ndarray:
+        """Block rows that balance the modelled work of a step: a row costs its cells plus
+        :data:`PARTICLE_WEIGHT` times its particles (:func:`~.decomposition.balanced_cuts`)."""
+        nx, ny, nz = self.mesh.shape
+        rows = self._rows_of(pos, np.arange(nz + 1, dtype=np.int64))
+        count = np.bincount(rows[rows >= 0], minlength=nz)[:nz]
+        return np.asarray(balanced_cuts(nx * ny + PARTICLE_WEIGHT * count, self.size, self.min_rows), dtype=np.int64)
+
+    def _build(self, arrays: dict, attrs: dict) -> None:
+        """The blocks (gas, particles, drag source, budgets) of the whole-box state ``arrays``,
+        with z cuts chosen from its particles."""
+        gas_options, options, _, periodic_z = self.serial_options
+        pos = np.asarray(arrays["particles/pos"])
+        self.cuts = self._cuts(pos)
+        self.gas = DistributedGridEngine(self.mesh, comm=self.comm, layout=(1, 1, self.size),
+                                         z_cuts=tuple(int(c) for c in self.cuts), **gas_options)
+        dec = self.gas.decomposition
+        self.block = dec.coords(self.rank)[2]
+        ranks = [dec.rank_of((0, 0, b)) for b in range(self.size)]
+        owner = self._rows_of(pos, self.cuts)
+        mine = (owner == self.block) | ((owner == -2) & (self.rank == 0))
+        self.local = BlockParticleEngine(BlockGas(self.gas), self._particles(arrays, mine), self.comm, self.cuts,
+                                         self.block, ranks, periodic_z, **options)
+        if self.rank == 0:
+            self.gas.whole = self.whole.gas
+        self._restore_blocks(arrays, attrs)
+        loads = np.bincount(owner[owner >= 0], minlength=self.size)
+        nx, ny, _ = self.mesh.shape
+        work = np.diff(self.cuts) * nx * ny + PARTICLE_WEIGHT * loads
+        self._messages.append(f"mpi: z rows {' '.join(str(int(c)) for c in self.cuts)}; particles per rank "
+                              f"{' '.join(str(int(x)) for x in loads)} (max/mean {_ratio(loads):.3f}); modelled "
+                              f"work max/mean {_ratio(work):.3f}")
 
     @staticmethod
     def _particles(arrays: dict, sel: np.ndarray) -> ParticleStore:
@@ -124,14 +153,9 @@ class DistributedParticleEngine:
         loc.gas_terms_impulse[...] = imp[3:] if first else 0.0
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
-        """Take this rank's share of a whole-box (serial) checkpoint; rank 0's ``whole`` takes all of it."""
-        loc = self.local
-        sel = self._owned(arrays["particles/pos"], loc)
-        loc.particles = self._particles(arrays, sel)
-        loc._allocate(loc.particles.capacity)
-        loc._check_inside()
-        loc._vmax = np.max(np.abs(loc.particles.vel), axis=1) if loc.particles.n else np.zeros(3)
-        self._restore_blocks(arrays, attrs)
+        """Take this rank's share of a whole-box (serial) checkpoint, with z cuts balanced for its
+        particles; rank 0's ``whole`` takes all of it."""
+        self._build(arrays, attrs)
         if self.rank == 0:
             self.whole.restore(arrays, attrs)
         self._version += 1
@@ -214,11 +238,8 @@ class DistributedParticleEngine:
         w.gas_terms_impulse[...] = total[27:30]
 
     def _load_line(self) -> str:
-        loads = np.array(self._loads, dtype=np.float64)
-        mean = loads.mean() if loads.size else 0.0
-        ratio = loads.max() / mean if mean > 0 else 1.0
-        return (f"particles per rank: {' '.join(str(int(x)) for x in loads)} (max/mean {ratio:.3f}; "
-                f"z rows {' '.join(str(int(c)) for c in self.cuts)})")
+        return (f"particles per rank: {' '.join(str(int(x)) for x in self._loads)} (max/mean "
+                f"{_ratio(self._loads):.3f}; z rows {' '.join(str(int(c)) for c in self.cuts)})")
 
     def particle_load(self) -> tuple[list[int], float]:
         """Particles per rank and max/mean of the last gather (rank 0; collective gather first)."""
@@ -229,11 +250,8 @@ class DistributedParticleEngine:
 
     def history(self) -> dict[str, float]:
         """The serial history of the gathered state (the same on every rank; collective)."""
-        first = self._gathered < 0
         self._gather()
         values = self.whole.history() if self.rank == 0 else None
-        if first and self.rank == 0:
-            self._messages.append(self._load_line())
         return self.comm.bcast(values, root=0)
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
@@ -258,5 +276,13 @@ class DistributedParticleEngine:
         return w.checkpoint()
 
     def messages(self) -> list[str]:
+        """Log lines since the last call (rank 0: the cuts and the particle load per rank)."""
         out, self._messages = self._messages, []
-        return out
+        return out if self.rank == 0 else []
+
+
+def _ratio(values) -> float:
+    """max/mean of ``values`` (1 if they are all 0)."""
+    values = np.asarray(values, dtype=np.float64)
+    mean = float(values.mean()) if values.size else 0.0
+    return float(values.max()) / mean if mean > 0 else 1.0
