@@ -199,8 +199,25 @@ class DistributedGridEngine:
         if u.shape != want:
             raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {want}")
         mine = {"conserved": np.ascontiguousarray(u[(slice(None),) + self.decomposition.block_slices(self.rank)]),
-                "budget": np.asarray(arrays["budget"]) if self.rank == 0 else np.zeros(0)}
+                "budget": self._budget_share(np.asarray(arrays["budget"]))}
         self.local.restore(mine, attrs)
+
+    def _budget_share(self, budget: np.ndarray) -> np.ndarray:
+        """This rank's part of the whole box's budget: rank 0 takes the sums over blocks; with a z
+        split alone, the mass lost through the lower and upper z faces goes to the blocks of those
+        faces, which go on adding to it as one process would (so it stays bit for bit)."""
+        out = np.zeros(budget.size)
+        dims = self.decomposition.dims
+        cz = self.decomposition.coords(self.rank)[2]
+        z_only = dims[0] == dims[1] == 1
+        for i, value in enumerate(budget):
+            if i == 2 and z_only:
+                out[i] = value if cz == 0 else 0.0
+            elif i == 3 and z_only:
+                out[i] = value if cz == dims[2] - 1 else 0.0
+            elif self.rank == 0:
+                out[i] = value
+        return out
 
     def primitive(self) -> tuple[np.ndarray, ...]:
         """Whole-box density and full velocities on rank 0 (collective; None elsewhere)."""

@@ -145,8 +145,8 @@ class ParticleGridEngine(CoupledOutputs):
         smooth: bool = True,
     ):
         if getattr(gas, "distributed", False):
-            raise SetupError("particles do not run on several MPI ranks yet (gas-only grid problems do): "
-                             "run this problem with one process")
+            raise SetupError("a ParticleGridEngine takes the whole box's gas: decompose the coupled engine with "
+                             "dustygas.parallel.coupled.distribute")
         if gas.scheme_names["integrator"] not in GAS_INTEGRATORS:
             raise SetupError(f"particles need the {' or '.join(GAS_INTEGRATORS)} gas integrator, "
                              f"not {gas.scheme_names['integrator']}")
