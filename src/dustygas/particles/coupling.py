@@ -67,8 +67,9 @@ from .deposit import filter_field, image_values, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
-                   occupied_rows, shear_frame_forces, trajectory_columns)
+                   shear_frame_forces, trajectory_columns)
 from .outputs import CoupledOutputs
+from .blocks import OneBlock
 from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
@@ -80,7 +81,7 @@ __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_densit
 GAS_INTEGRATORS = ("vl2", "ctu")
 
 
-class ParticleGridEngine(CoupledOutputs):
+class ParticleGridEngine(CoupledOutputs, OneBlock):
     """A two-stage gas engine (VL2) with Lagrangian dust particles (module docstring).
 
     Parameters
@@ -391,37 +392,6 @@ class ParticleGridEngine(CoupledOutputs):
         sort_images(m, self._lay, self._reach, pid, self._img_src, self._img_cell, self._img_w, self._img_dvy,
                     self._img_row_start)
         self._images = m
-
-    # ------------------------------------------------------------------ hooks of a decomposed run
-    def _add_halo(self, m: int) -> int:
-        """After the ``m`` image records of a sort: add the records of the neighbouring blocks'
-        particles (:mod:`dustygas.parallel.particles`); returns the new count. One block: none."""
-        return m
-
-    def _occupied_rows(self, n: int, margin: int) -> tuple[int, int]:
-        """Rows ``[k_lo, k_hi)`` of the whole mesh whose fields the particles need this step
-        (:func:`~dustygas.particles.push.occupied_rows`)."""
-        nx, ny, nz = self.geometry.shape
-        return occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
-
-    def _block_rows(self, rows: tuple[int, int]) -> tuple[int, int]:
-        """The domain rows of this block among the rows ``rows`` of the whole mesh."""
-        return rows
-
-    def _padded_rows(self, rows: tuple[int, int], gz: int) -> tuple[int, int]:
-        """The padded z rows of a field with ``gz`` ghost layers to fill and filter for the
-        domain rows ``rows`` of the whole mesh (with the ghost rows beyond them where they reach a z face)."""
-        nz = self.geometry.shape[2]
-        k_lo = rows[0] + gz if rows[0] > 0 else 0
-        k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
-        return k_lo, k_hi
-
-    def _field_halo(self, field: np.ndarray, gz: int) -> None:
-        """Fill the z ghost rows of ``field`` that neighbouring blocks hold. One block: none."""
-
-    def _kicked(self, n: int) -> None:
-        """After the kick: the neighbouring blocks' halo particles get their drag deposits. One block: none."""
-
 
     def _stop_nonfinite(self, bad: int) -> None:
         """Stop (:class:`~dustygas.errors.SimulationError`, naming the particle and the field):
