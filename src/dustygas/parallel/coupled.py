@@ -257,12 +257,19 @@ class DistributedParticleEngine:
     def history(self) -> dict[str, float]:
         """The serial history of the gathered state (the same on every rank; collective)."""
         self._gather()
-        values = self.whole.history() if self.rank == 0 else None
-        return self.comm.bcast(values, root=0)
+        if self.rank == 0:
+            before = self.whole.sorts
+            values = self.whole.history()
+            resorted = self.whole.sorts != before
+        values, resorted = self.comm.bcast((values, resorted) if self.rank == 0 else None, root=0)
+        if resorted:  # the serial history sorted the particles (its dust density): so do the blocks
+            self.local.resort()
+        return values
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         """The serial snapshot on rank 0; empty elsewhere (collective)."""
         self._gather()
+        self.local.resort()  # the serial snapshot sorts the particles (its dust density)
         if self.rank != 0:
             return {}, {}
         self._messages.append(self._load_line())

@@ -41,6 +41,7 @@ from ..grid.boundaries import FIELD_NEIGHBOUR
 from ..particles.boundaries import apply_boundaries
 from ..particles.coupling import ParticleGridEngine
 from ..particles.interp import axis_cell
+from ..particles.store import sort_by_cell
 
 __all__ = ["BlockGas", "BlockParticleEngine", "z_blocks"]
 
@@ -238,6 +239,21 @@ class BlockParticleEngine(ParticleGridEngine):
         """Every attribute of the selected particles (and their keys of the last sort)."""
         p = self.particles
         return (p.pos[:, sel], p.vel[:, sel], p.species[sel], p.pid[sel], p.mass[sel], self._gkey[:p.n][sel])
+
+    def resort(self) -> None:
+        """Sort the block's particles at their present positions, as the serial run's outputs
+        sort all of them: the next exchange step then meets them in the serial order (the mass
+        and momentum that leave through a z face are summed in it)."""
+        p = self.particles
+        if p.capacity > self._capacity:
+            self._allocate(p.capacity)
+        pos, vel, species, pid, mass = p.buffers()
+        bad = sort_by_cell(pos, vel, species, pid, mass, p.n, self._lay, self._sp, self._off, self._keys,
+                           self._order_work, self._ptr, self._cell_start, self._fwork, self._iwork, self._order, self._R,
+                           self._wts)
+        if bad < 0:  # else the next step's sort stops the run on every rank
+            nx, ny, _ = self.geometry.shape
+            self._gkey[:p.n] = self._keys[:p.n] + self._k0 * nx * ny
 
     # ------------------------------------------------------------------ after the sort
     def _stop_nonfinite(self, bad: int) -> None:

@@ -262,6 +262,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._images = 0
         #: particles of neighbouring blocks held after the store's own (halo sources; 0 in one block)
         self._n_halo = 0
+        #: sorts so far (the outputs sort too: a decomposed run repeats them on its blocks)
+        self.sorts = 0
         self.mode = None if mode is None else tuple(int(x) for x in mode)
         self._mode_setup()
         self._check_inside()
@@ -369,6 +371,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
     def _prepare(self, t: float) -> None:
         """Sort, weights and image records of the particles as they are (positions at ``t``)."""
         p = self.particles
+        self.sorts += 1
         if p.capacity > self._capacity:
             self._allocate(p.capacity)
         pos, vel, species, pid, mass = p.buffers()
