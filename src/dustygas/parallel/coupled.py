@@ -11,8 +11,10 @@ Outputs are those of the serial engine by construction: rank 0 keeps the engine 
 built (``whole``), into which the blocks' gas and the particles are gathered -- the particles
 in the serial store order, by their cell at the last sort and their id -- so its
 :meth:`history`, :meth:`snapshot` and :meth:`checkpoint` (whose re-sorts change the order as
-they do in a serial run) are the serial ones. The state is gathered once per step, whatever
-the outputs asked for. The checkpoint is the serial one and restarts on any rank count.
+they do in a serial run) are the serial ones; when they sort the particles, every block sorts
+its own, so that the next exchange step meets them in the serial order. The state is gathered
+once per step, whatever the outputs asked for. The checkpoint is the serial one and restarts on
+any rank count (with z cuts chosen again for its particles).
 
 Budgets that are sums over the step's particles or cells -- the momentum the particle terms
 gave (``particle_terms_impulse_*``), the gas terms' impulse, the gas's radial mass and
