@@ -1,4 +1,4 @@
-"""Two MPI ranks against one on a 3D 64^3 gas-only box (issue: 2 ranks >= 1.7x one rank).
+"""Two MPI ranks against one on 3D boxes (issue 13: 2 ranks >= 1.7x one rank).
 
 Each case is a whole ``dustygas run`` (the run loop's own wall clock: start-up and compilation
 excluded; one untimed run compiles first), one numba thread per rank, ranks alternating
@@ -6,12 +6,17 @@ within each repeat, best of ``--repeat`` kept:
 
 * ``sound``   ``soundwave-3d`` at 64^3 (periodic; 2 ranks split z), 40 steps;
 * ``shear``   a 3D shearing box of gas, ``epicycle`` at 64^3 with orbital advection (shear-
-              periodic x: 2 ranks split z), 40 steps.
+              periodic x: 2 ranks split z), 40 steps;
+* ``part``    a 3D particle box, ``si-AB-3d`` at 32^3 (Johansen & Youdin's run AB: uniform gas
+              and 32,768 randomly placed particles, one per cell, periodic z), 40 steps;
+* ``layer``   the settled layer of ``si3d`` at 32 x 32 x 48 (the particles within a few cells
+              of the midplane, outflow z faces), 40 steps: the z cuts balance cells + particles.
 
-The script prints zone-cycles/s of 1 and 2 ranks, the ratio, and ``uptime`` before and after
-(a 2-rank figure needs both cores quiet). Run alone::
+The script prints zone-cycles/s of 1 and 2 ranks, the ratio, the particles per rank of the
+2-rank run with max/mean (from its log), and ``uptime`` before and after (a 2-rank figure
+needs both cores quiet). Run alone::
 
-    flock benchmarks/.lock python benchmarks/bench_mpi.py [--cases sound shear] [--repeat 2]
+    flock benchmarks/.lock python benchmarks/bench_mpi.py [--cases sound shear part layer] [--repeat 2]
 """
 
 from __future__ import annotations
@@ -19,6 +24,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -27,14 +33,18 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 GRID = ["--set", "grid.nx=64", "--set", "grid.ny=64", "--set", "grid.nz=64", "--set", "run.max_cycles=40"]
+QUIET = ["--set", "run.dt_history=1e3", "--set", "run.dt_snapshot=1e3", "--set", "run.max_cycles=40"]
 CASES = {
     "sound": ["soundwave-3d", *GRID],
     "shear": ["epicycle", *GRID, "--set", "scheme.cfl=0.3", "--set", "shearing_box.orbital_advection=true"],
+    "part": ["si-AB-3d", *QUIET],
+    "layer": ["si3d", *QUIET],
 }
 
 
-def run_once(case: list[str], ranks: int, workdir: Path) -> float:
-    """zone-cycles/s of one ``dustygas run`` on ``ranks`` ranks (the loop's throughput line)."""
+def run_once(case: list[str], ranks: int, workdir: Path) -> tuple[float, str]:
+    """zone-cycles/s of one ``dustygas run`` on ``ranks`` ranks (the loop's throughput line), and
+    its line of particles per rank (empty for gas)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src"), "NUMBA_NUM_THREADS": "1"}
     out = tempfile.mkdtemp(dir=workdir)
     launch = [] if ranks == 1 else [shutil.which("mpiexec") or "mpiexec", "-n", str(ranks)]
@@ -45,14 +55,42 @@ def run_once(case: list[str], ranks: int, workdir: Path) -> float:
     found = re.search(r"throughput=([0-9.e+-]+) zone-cycles/s", proc.stderr)
     if found is None:
         raise SystemExit(f"no throughput line:\n{proc.stderr}")
-    return float(found.group(1))
+    load = re.search(r"mpi: (z rows .*)", proc.stderr)
+    return float(found.group(1)), load.group(1) if load else ""
+
+
+def cpu_per_step(case: list[str], ranks: int, workdir: Path, short: int, long: int) -> float:
+    """CPU seconds per step of all the ranks together: the CPU time of a run of ``long`` steps
+    minus that of ``short`` steps (start-up, compilation and outputs cancel), over the difference."""
+    cpu = []
+    for cycles in (short, long):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        run_once([*case, "--set", f"run.max_cycles={cycles}"], ranks, workdir)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+    return (cpu[1] - cpu[0]) / (long - short)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     parser.add_argument("--repeat", type=int, default=2)
+    parser.add_argument("--cpu", action="store_true",
+                        help="(a loaded machine) CPU time per step of 1 rank and of 2 ranks together instead of "
+                             "wall-clock rates: 20 and 60 steps, differenced")
     args = parser.parse_args()
+    if args.cpu:
+        print("uptime before:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+        with tempfile.TemporaryDirectory() as tmp:
+            for name in args.cases:
+                case = CASES[name]
+                run_once(case, 1, Path(tmp))  # compile
+                one, two = (cpu_per_step(case, r, Path(tmp), 20, 60) for r in (1, 2))
+                print(f"{name:6s} CPU per step: 1 rank {1e3 * one:.1f} ms, 2 ranks together {1e3 * two:.1f} ms "
+                      f"(CPU efficiency {one / two:.2f}: 2 ranks on two free cores at best {2 * one / two:.2f}x)",
+                      flush=True)
+        print("uptime after:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+        return
     print("uptime before:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
@@ -60,11 +98,14 @@ def main() -> None:
             case = CASES[name]
             run_once(case, 1, work)  # compile
             best = {1: 0.0, 2: 0.0}
+            load = ""
             for _ in range(args.repeat):
                 for ranks in (1, 2):
-                    best[ranks] = max(best[ranks], run_once(case, ranks, work))
+                    rate, line = run_once(case, ranks, work)
+                    best[ranks] = max(best[ranks], rate)
+                    load = line or load
             print(f"{name:6s} 1 rank {best[1]:.4g}  2 ranks {best[2]:.4g} zone-cycles/s  "
-                  f"speed-up {best[2] / best[1]:.2f}")
+                  f"speed-up {best[2] / best[1]:.2f}" + (f"  [{load}]" if load else ""), flush=True)
     print("uptime after:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
 
 

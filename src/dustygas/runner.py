@@ -479,7 +479,7 @@ def run_engine(
     rundir = path if isinstance(path, RunDirectory) else RunDirectory(path)
     if launched_under_mpi() and not getattr(engine, "distributed", False):
         raise UserError(f"problem {cfg.problem_name} does not run on several MPI ranks yet "
-                        "(gas-only grid problems do): run it with one process")
+                        "(the grid and particle-grid problems do): run it with one process")
     loop = RunLoop(engine, cfg, rundir, progress)
     try:
         if restart_from is None:

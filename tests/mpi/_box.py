@@ -25,6 +25,10 @@ CASES = {
     "shear3d-open": dict(shape=(12, 12, 24), size=(1.0, 2.0, 1.0), options=dict(
         boundaries=("shear-periodic", "periodic", "outflow"), omega=1.0, q=1.5, cfl=0.3,
         orbital_advection=True, vertical_gravity=True, reconstruction="ppm", integrator="rk3")),
+    # a stratified column: vertical gravity, hydrostatic z faces (split in z: the end blocks fill them)
+    "strat3d": dict(shape=(8, 8, 24), size=(1.0, 1.0, 3.0), options=dict(
+        boundaries=("shear-periodic", "periodic", "hydrostatic"), omega=1.0, q=1.5, cfl=0.3,
+        orbital_advection=True, vertical_gravity=True)),
     # reflecting x walls and outflow y on a 3D box split in x and y
     "walls3d": dict(shape=(12, 12, 6), size=(1.0, 1.0, 0.5), options=dict(
         boundaries=("reflecting", "outflow", "periodic"), cfl=0.3)),

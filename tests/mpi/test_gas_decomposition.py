@@ -21,10 +21,12 @@ CASES = [
     pytest.param("shear3d", 4, (1, 1, 4), marks=pytest.mark.slow),
     ("shear3d-open", 2, None),  # orbital advection, vertical gravity, outflow z: physical ends
     ("walls3d", 4, (2, 2, 1)),  # reflecting x walls and outflow y on split axes
+    # hydrostatic z faces on the end blocks, a middle block between two neighbours (the si3d tests split them too)
+    pytest.param("strat3d", 3, None, marks=pytest.mark.slow),
 ]
 
 
-IDS = ["periodic2d-2", "periodic2d-4", "shear3d-2", "shear3d-4", "shear3d-open-2", "walls3d-4"]
+IDS = ["periodic2d-2", "periodic2d-4", "shear3d-2", "shear3d-4", "shear3d-open-2", "walls3d-4", "strat3d-3"]
 
 
 @pytest.mark.parametrize("case, nranks, layout", CASES, ids=IDS)

@@ -42,9 +42,11 @@ def test_two_ranks_write_the_serial_files_and_restart_on_one_and_four(mpirun, tm
 @pytest.mark.parametrize("nranks, args, message", [
     (3, ["soundwave-2d"], "mpi ranks=3: the 64 x 64 x 1 mesh has no layout of 3 equal blocks"),
     pytest.param(2, ["shearing-wave"], "x not split (shear-periodic x boundaries)", marks=pytest.mark.slow),
-    pytest.param(2, ["dustybox-grid"], "problem dustybox-grid does not run on several MPI ranks yet",
+    pytest.param(2, ["si3d-selfgravity"], "problem si3d-selfgravity does not run on several MPI ranks yet",
                  marks=pytest.mark.slow),
-], ids=["indivisible", "shear-xy", "particles"])
+    pytest.param(2, ["nsh", "--set", "grid.nz=1"], "particles split the z axis only, and this mesh has nz = 1",
+                 marks=pytest.mark.slow),
+], ids=["indivisible", "shear-xy", "self-gravity", "particles-2d-xy"])
 def test_bad_mpi_use_is_one_line_exit_2(nranks, args, message, mpirun, tmp_path):
     proc = mpirun(nranks, "-m", "dustygas", "run", *args, "-o", "bad", cwd=tmp_path)
     assert proc.returncode == 2, proc.stderr[-2000:]

@@ -60,7 +60,7 @@ __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "NEIGHBOUR", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
     "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY", "FIELD_PERIODIC", "FIELD_SHEAR",
-    "FIELD_MIRROR", "field_ghost_kinds", "fill_field_ghosts",
+    "FIELD_MIRROR", "FIELD_NEIGHBOUR", "field_ghost_kinds", "fill_field_ghosts",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
@@ -91,6 +91,10 @@ class Boundaries(NamedTuple):
     remap_method: int  # reconstruction of the fractional shift
     remap_limiter: int
     half_inv_h2: float  # 1 / (2 H^2) = Omega^2 / (2 c_s^2) of the hydrostatic boundary
+    #: where the block sits along z: the lower z of the whole box and the block's first cell
+    #: (a block's hydrostatic ghosts take the heights of the whole mesh, bit for bit)
+    z_origin: float = 0.0
+    z_first: int = 0
 
     @property
     def shearing(self) -> bool:
@@ -173,14 +177,18 @@ def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
 
 @njit(cache=True, error_model="numpy")
 def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
-    """Open vertical boundaries of a stratified isothermal box, rows ``l0 .. l1-1``."""
+    """Open vertical boundaries of a stratified isothermal box, rows ``l0 .. l1-1`` (a face
+    that borders another block is left alone; heights ``z_origin + (z_first + k + 1/2) dz``
+    of the whole mesh)."""
     nz, gz = lay.nz, lay.gz
     for side in range(2):
+        if (bc.z_lo if side == 0 else bc.z_hi) == NEIGHBOUR:
+            continue
         src = gz if side == 0 else gz + nz - 1
-        z_src = sp.z0 + (src - gz + 0.5) * sp.dz
+        z_src = bc.z_origin + (bc.z_first + src - gz + 0.5) * sp.dz
         for m in range(gz):
             dst = gz - 1 - m if side == 0 else gz + nz + m
-            z_dst = sp.z0 + (dst - gz + 0.5) * sp.dz
+            z_dst = bc.z_origin + (bc.z_first + dst - gz + 0.5) * sp.dz
             factor = math.exp(-(z_dst * z_dst - z_src * z_src) * bc.half_inv_h2)
             for line in range(l0, l1):
                 for v in range(3):
@@ -254,7 +262,7 @@ def fill_ghost_lines(u, axis, l0, l1, t, lay, sp, bc) -> None:
     All items of an axis are independent; the axes must be done in the order z, y, x.
     """
     if axis == 2:
-        if bc.z_lo == HYDROSTATIC:
+        if bc.z_lo == HYDROSTATIC or bc.z_hi == HYDROSTATIC:
             _hydrostatic_ghosts(u, lay, sp, bc, l0, l1)
         else:
             _copy_ghosts(u, 2, lay.nz, lay.gz, bc.z_lo, bc.z_hi, l0, l1)
@@ -395,6 +403,8 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> float:
 #: image (every non-periodic kind: it keeps the sum of a field under the symmetric grid-scale
 #: filter and folds a deposit back into the domain)
 FIELD_PERIODIC, FIELD_SHEAR, FIELD_MIRROR = 0, 1, 2
+#: a z face of a field whose ghosts another block provides (:mod:`dustygas.parallel`)
+FIELD_NEIGHBOUR = 3
 
 
 def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, bool]) -> np.ndarray:
@@ -427,7 +437,9 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
     """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
 
     ``kinds``: :data:`FIELD_PERIODIC`, :data:`FIELD_SHEAR` (x only) or :data:`FIELD_MIRROR` per
-    axis. A shear-periodic ghost column is the periodic column shifted conservatively by
+    axis; a fourth entry, if given, is the kind of the upper z face (then ``kinds[2]`` that of
+    the lower one), and a z face of kind :data:`FIELD_NEIGHBOUR` is left alone (a block's
+    neighbour fills it). A shear-periodic ghost column is the periodic column shifted conservatively by
     ``+shift`` cells along y on the inner side and ``-shift`` on the outer (the convention of
     the gas ghosts above; ``shift`` = shear offset / dy), without a velocity jump: fields that
     hold the azimuthal gas velocity store it relative to the background shear. Axes z, y, x in
@@ -436,10 +448,15 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
     """
     NZ, NY, NX, nvar = f.shape
     nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
+    kz_lo = kinds[2]
+    kz_hi = kinds[3] if kinds.shape[0] > 3 else kinds[2]
     for m in range(gz):
-        lo, hi, slo, shi = _field_ghost_pair(kinds[2], m, nz, gz)
-        f[lo] = f[slo]
-        f[hi] = f[shi]
+        if kz_lo != FIELD_NEIGHBOUR:
+            lo, _, slo, _ = _field_ghost_pair(kz_lo, m, nz, gz)
+            f[lo] = f[slo]
+        if kz_hi != FIELD_NEIGHBOUR:
+            _, hi, _, shi = _field_ghost_pair(kz_hi, m, nz, gz)
+            f[hi] = f[shi]
     for m in range(gy):
         lo, hi, slo, shi = _field_ghost_pair(kinds[1], m, ny, gy)
         for k in range(k_lo, k_hi):

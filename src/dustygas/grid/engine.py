@@ -144,6 +144,10 @@ class GridEngine:
         for n, g, axis in zip(mesh.shape, mesh.ghosts, "xyz"):
             if 1 < n < g:
                 raise SetupError(f"n{axis}={n}: an active axis needs at least {g} cells")
+        #: the arguments besides the mesh (a decomposed run builds a block engine from them)
+        self.options = dict(cs=cs, integrator=integrator, reconstruction=reconstruction, limiter=limiter,
+                            riemann=riemann, cfl=cfl, boundaries=tuple(boundaries), omega=omega, q=q,
+                            orbital_advection=orbital_advection, vertical_gravity=vertical_gravity, eta_vK=eta_vK)
         shear = boundaries[0] == "shear-periodic" and mesh.active[0]
         if orbital_advection and omega == 0.0:
             raise SetupError("orbital advection needs a rotating frame (omega != 0)")
@@ -168,7 +172,7 @@ class GridEngine:
             tuple(boundaries), mesh.active, q * omega * lx,
             shear_velocity_jump(q, omega, lx, self.orbital_advection), recon, lim,
             scale_height=cs / omega if vertical_gravity and omega > 0 else 0.0,
-        )
+        )._replace(z_origin=float(mesh.origin[2]), z_first=int(mesh.offsets.k0))
         self._oa_rate = q * omega if self.orbital_advection and mesh.active[1] else 0.0
         # v_y(full) = v_y(stored) - to_full x ;  v_y(relative to shear) = v_y(stored) + to_relative x
         self._to_full = q * omega if self.orbital_advection else 0.0

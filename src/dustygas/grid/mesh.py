@@ -160,6 +160,12 @@ class Mesh:
         return tuple(-0.5 * s if n > 1 else 0.0 for s, n in zip(self.size, self.shape))  # type: ignore[return-value]
 
     @property
+    def origin(self) -> tuple[float, float, float]:
+        """Lower corner of the whole mesh (of a single block: :attr:`lower`); kernels that need
+        global coordinates form ``origin + (offset + i + 1/2) dx`` (:attr:`offsets`)."""
+        return self.lower
+
+    @property
     def cell_volume(self) -> float:
         dx, dy, dz = self.dx
         return dx * dy * dz

@@ -10,7 +10,11 @@ needed.
 * :mod:`.halo` -- the one halo exchange: ghost layers from the neighbouring blocks, periodic
   images included, axis by axis in the order of the serial ghost fill;
 * :mod:`.gas` -- :class:`~.gas.DistributedGridEngine`, the grid engine on one block with the
-  run-loop protocol of the whole box (gathered diagnostics and outputs on rank 0).
+  run-loop protocol of the whole box (gathered diagnostics and outputs on rank 0);
+* :mod:`.particles` -- :class:`~.particles.BlockParticleEngine`, the particle–gas engine on one
+  block of a z split: migration, halo particles, field halos;
+* :mod:`.coupled` -- :class:`~.coupled.DistributedParticleEngine`, the particle–gas run over
+  the ranks (z cuts balancing cells and particles, outputs gathered in the serial order).
 """
 
 from .comm import launched_under_mpi, rank_and_size

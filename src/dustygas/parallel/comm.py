@@ -74,4 +74,4 @@ def check_ranks(problem) -> None:
         from ..errors import UserError
 
         raise UserError(f"problem {problem.name} does not run on several MPI ranks yet "
-                        "(gas-only grid problems do): run it with one process")
+                        "(the grid and particle-grid problems do): run it with one process")

@@ -10,8 +10,8 @@ neighbour fills its ghosts.
 Phase-one limits, refused with a one-line error rather than run wrongly: the radial axis of a
 shear-periodic box and the azimuthal axis of a box with shear-periodic boundaries or orbital
 advection are not split (the sliding radial images, the radial flux correction and the
-orbital-advection remap work on whole x-y planes); a box with hydrostatic z boundaries is not
-split in z.
+orbital-advection remap work on whole x-y planes). A box with hydrostatic z boundaries is split
+in z like any other: its end blocks fill those ghosts with the heights of the whole mesh.
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import numpy as np
 from ..errors import UserError
 from ..grid.mesh import NGHOST, Mesh
 
-__all__ = ["Decomposition", "BlockMesh", "choose_layout", "unsplittable_axes"]
+__all__ = ["Decomposition", "BlockMesh", "choose_layout", "unsplittable_axes", "balanced_cuts", "check_cuts"]
 
 
 def unsplittable_axes(boundaries: tuple[str, str, str], orbital_advection: bool,
@@ -43,8 +43,6 @@ def unsplittable_axes(boundaries: tuple[str, str, str], orbital_advection: bool,
             out[1] = "shear-periodic x boundaries (the sliding images remap whole y columns)"
     if orbital_advection and active[1]:
         out[1] = "orbital advection (it remaps whole y columns)"
-    if boundaries[2] == "hydrostatic" and active[2]:
-        out[2] = "hydrostatic z boundaries"
     return out
 
 
@@ -108,17 +106,76 @@ def check_layout(shape: tuple[int, int, int], dims: tuple[int, int, int], forbid
                             f"fewer than the {nghost} ghost layers")
 
 
+def check_cuts(nz: int, pz: int, cuts, nghost: int = NGHOST) -> None:
+    """Refuse z cuts that are not ``pz + 1`` rising rows from 0 to ``nz`` with blocks of >= ``nghost`` rows."""
+    cuts = [int(c) for c in cuts]
+    if len(cuts) != pz + 1 or cuts[0] != 0 or cuts[-1] != nz or min(np.diff(cuts), default=nghost) < nghost:
+        raise UserError(f"mpi z cuts {cuts}: need {pz + 1} rows rising from 0 to {nz} in steps of >= {nghost}")
+
+
+def balanced_cuts(row_cost, nblocks: int, min_rows: int) -> tuple[int, ...]:
+    """First rows of ``nblocks`` consecutive blocks of >= ``min_rows`` rows (and the row count)
+    that minimise the largest block cost, the cost of a block being the sum of ``row_cost`` over
+    its rows (dynamic programming over the cut rows; the first of equal optima).
+
+    >>> balanced_cuts([1.0] * 12, 3, 3)
+    (0, 4, 8, 12)
+    >>> balanced_cuts([1, 1, 1, 1, 1, 9, 9, 1, 1, 1, 1, 1], 2, 3)
+    (0, 6, 12)
+    >>> balanced_cuts([1, 1, 1, 1, 1, 9, 9, 1, 1, 1, 1, 1], 4, 3)
+    (0, 3, 6, 9, 12)
+    """
+    cost = np.asarray(row_cost, dtype=np.float64)
+    nz = cost.shape[0]
+    if nblocks * min_rows > nz:
+        raise UserError(f"mpi ranks={nblocks}: {nz} rows along z hold no {nblocks} blocks of >= {min_rows} rows")
+    prefix = np.concatenate([[0.0], np.cumsum(cost)])
+    # best[b, e]: the least largest cost of b + 1 blocks covering rows 0 .. e-1; start[b, e] its last cut
+    best = np.full((nblocks, nz + 1), np.inf)
+    start = np.zeros((nblocks, nz + 1), dtype=np.int64)
+    best[0, min_rows:] = prefix[min_rows:]
+    for b in range(1, nblocks):
+        for e in range((b + 1) * min_rows, nz + 1):
+            s = np.arange(b * min_rows, e - min_rows + 1)
+            worst = np.maximum(best[b - 1, s], prefix[e] - prefix[s])
+            i = int(np.argmin(worst))
+            best[b, e], start[b, e] = worst[i], s[i]
+    cuts = [nz]
+    for b in range(nblocks - 1, 0, -1):
+        cuts.append(int(start[b, cuts[-1]]))
+    return tuple([0] + cuts[::-1])
+
+
 @dataclass(frozen=True)
 class Decomposition:
-    """A Cartesian layout ``dims = (px, py, pz)`` of the mesh ``shape`` (see module doc).
+    """A Cartesian layout ``dims = (px, py, pz)`` of the mesh ``shape`` (see module doc); the z
+    blocks may be uneven: ``z_cuts`` (``pz + 1`` rows, from 0 to ``nz``) are their first rows.
 
     >>> d = Decomposition((64, 32, 16), (2, 1, 2))
     >>> d.nranks, d.block_shape, d.coords(3), d.offset(3)
     (4, (32, 32, 8), (1, 0, 1), (32, 0, 8))
+    >>> Decomposition((8, 8, 16), (1, 1, 3), z_cuts=(0, 6, 10, 16)).block_shape_of(1)
+    (8, 8, 4)
     """
 
     shape: tuple[int, int, int]
     dims: tuple[int, int, int]
+    z_cuts: tuple[int, ...] | None = None
+
+    @property
+    def cuts(self) -> tuple[int, ...]:
+        """First row of every z block, and ``nz``."""
+        if self.z_cuts is not None:
+            return tuple(int(c) for c in self.z_cuts)
+        pz, nz = self.dims[2], self.shape[2]
+        return tuple(b * (nz // pz) for b in range(pz + 1))
+
+    def block_shape_of(self, rank: int) -> tuple[int, int, int]:
+        """Cells of the block of ``rank``."""
+        bx, by, _ = self.block_shape
+        cz = self.coords(rank)[2]
+        cuts = self.cuts
+        return (bx, by, cuts[cz + 1] - cuts[cz])
 
     @property
     def nranks(self) -> int:
@@ -139,7 +196,9 @@ class Decomposition:
 
     def offset(self, rank: int) -> tuple[int, int, int]:
         """First global cell ``(i0, j0, k0)`` of the rank's block."""
-        return tuple(c * b for c, b in zip(self.coords(rank), self.block_shape))  # type: ignore[return-value]
+        cx, cy, cz = self.coords(rank)
+        bx, by, _ = self.block_shape
+        return (cx * bx, cy * by, self.cuts[cz])
 
     def neighbour(self, rank: int, axis: int, step: int, periodic: bool) -> int | None:
         """Rank of the block ``step`` (+1 or -1) along ``axis``; None past a non-periodic end."""
@@ -153,7 +212,7 @@ class Decomposition:
 
     def block_slices(self, rank: int) -> tuple[slice, slice, slice]:
         """Index ``[k, j, i]`` of the rank's block in a global ``(NZ, NY, NX)`` domain array."""
-        (i0, j0, k0), (bx, by, bz) = self.offset(rank), self.block_shape
+        (i0, j0, k0), (bx, by, bz) = self.offset(rank), self.block_shape_of(rank)
         return (slice(k0, k0 + bz), slice(j0, j0 + by), slice(i0, i0 + bx))
 
 
@@ -191,6 +250,11 @@ class BlockMesh(Mesh):
                      for lo, i0, d, n in zip(g.lower, self.offset, g.dx, self.shape))  # type: ignore[return-value]
 
     @property
+    def origin(self) -> tuple[float, float, float]:
+        """Lower corner of the whole mesh."""
+        return self.global_mesh.lower
+
+    @property
     def offsets(self):
         from ..grid.mesh import Offsets
 
@@ -209,5 +273,5 @@ class BlockMesh(Mesh):
 
 def block_mesh(mesh: Mesh, decomposition: Decomposition, rank: int) -> BlockMesh:
     """The block of ``mesh`` that ``rank`` holds."""
-    return BlockMesh(decomposition.block_shape, mesh.size, mesh.nghost, global_shape=mesh.shape,
+    return BlockMesh(decomposition.block_shape_of(rank), mesh.size, mesh.nghost, global_shape=mesh.shape,
                      offset=decomposition.offset(rank))

@@ -25,7 +25,7 @@ from ..errors import SimulationError, UserError
 from ..grid.boundaries import NEIGHBOUR
 from ..grid.engine import GridEngine
 from ..grid.mesh import Mesh
-from .decomposition import Decomposition, block_mesh, check_layout, choose_layout, unsplittable_axes
+from .decomposition import Decomposition, block_mesh, check_cuts, check_layout, choose_layout, unsplittable_axes
 from .halo import HaloExchange
 
 __all__ = ["DistributedGridEngine"]
@@ -42,6 +42,8 @@ class DistributedGridEngine:
         MPI communicator (default ``MPI.COMM_WORLD``).
     layout
         Ranks per axis ``(px, py, pz)``; None: :func:`~.decomposition.choose_layout`.
+    z_cuts
+        With ``layout``: the first row of every z block and ``nz`` (uneven blocks); None: equal blocks.
     **engine_options
         Keyword arguments of :class:`~dustygas.grid.engine.GridEngine`.
     """
@@ -50,7 +52,8 @@ class DistributedGridEngine:
     #: the run loop's sign that this engine spans the ranks (rank 0 writes, decisions are agreed)
     distributed = True
 
-    def __init__(self, mesh: Mesh, comm=None, layout: tuple[int, int, int] | None = None, **engine_options: Any):
+    def __init__(self, mesh: Mesh, comm=None, layout: tuple[int, int, int] | None = None,
+                 z_cuts: tuple[int, ...] | None = None, **engine_options: Any):
         if comm is None:
             from .comm import world
 
@@ -67,9 +70,13 @@ class DistributedGridEngine:
             dims = tuple(int(p) for p in layout)
             if int(np.prod(dims)) != self.size:
                 raise UserError(f"mpi layout {dims}: needs {int(np.prod(dims))} ranks, the run has {self.size}")
-            check_layout(mesh.shape, dims, forbidden, mesh.nghost)
+            if z_cuts is None:
+                check_layout(mesh.shape, dims, forbidden, mesh.nghost)
+            else:  # uneven z blocks: x and y as the layout says, z as the cuts say
+                check_layout(mesh.shape[:2] + (dims[2] * mesh.nghost,), dims, forbidden, mesh.nghost)
+                check_cuts(mesh.shape[2], dims[2], z_cuts, mesh.nghost)
         self.mesh = mesh
-        self.decomposition = Decomposition(mesh.shape, dims)  # type: ignore[arg-type]
+        self.decomposition = Decomposition(mesh.shape, dims, z_cuts)  # type: ignore[arg-type]
         self.block = block_mesh(mesh, self.decomposition, self.rank)
         self.local = GridEngine(self.block, **engine_options)
         wraps = tuple(k in ("periodic", "shear-periodic") or not on for k, on in zip(boundaries, mesh.active))
@@ -110,8 +117,7 @@ class DistributedGridEngine:
         """Copy every block's domain cells and budget into the whole-box engine on rank 0."""
         inner = (slice(None),) + self.block.interior()
         mine = np.ascontiguousarray(self.local.states[0][inner])
-        blocks = np.empty((self.size,) + mine.shape) if self.rank == 0 else None
-        self.comm.Gather(mine, blocks, root=0)
+        blocks = self.comm.gather(mine, root=0)  # blocks of uneven z cuts differ in shape
         budgets = np.empty((self.size, self.local.budget.size)) if self.rank == 0 else None
         self.comm.Gather(np.ascontiguousarray(self.local.budget), budgets, root=0)
         if self.rank == 0:
@@ -156,12 +162,19 @@ class DistributedGridEngine:
 
     def advance(self, dt: float) -> None:
         """One step: for each stage, the halo exchange of its input, then the compiled stage."""
+        for s in range(self.local.stage_count):
+            self.advance_stage(s, dt)
+
+    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None) -> None:
+        """:meth:`GridEngine.advance_stage <dustygas.grid.engine.GridEngine.advance_stage>` of the
+        block (``ext``: the block's source), after the halo exchange of the stage's input."""
         local = self.local
-        kept = local.budget[self._inner_z_budget].copy()
-        for s in range(local.stage_count):
-            self.halo.fill(local.stage_input(s))
-            local.advance_stage(s, dt)
-        local.budget[self._inner_z_budget] = kept  # the flux through a block face is not lost
+        if stage == 0:
+            self._kept = local.budget[self._inner_z_budget].copy()
+        self.halo.fill(local.stage_input(stage))
+        local.advance_stage(stage, dt, ext)
+        if stage == local.stage_count - 1:
+            local.budget[self._inner_z_budget] = self._kept  # the flux through a block face is not lost
 
     def history(self) -> dict[str, float]:
         """:meth:`GridEngine.history` of the gathered box (the same on every rank)."""
@@ -186,8 +199,25 @@ class DistributedGridEngine:
         if u.shape != want:
             raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {want}")
         mine = {"conserved": np.ascontiguousarray(u[(slice(None),) + self.decomposition.block_slices(self.rank)]),
-                "budget": np.asarray(arrays["budget"]) if self.rank == 0 else np.zeros(0)}
+                "budget": self._budget_share(np.asarray(arrays["budget"]))}
         self.local.restore(mine, attrs)
+
+    def _budget_share(self, budget: np.ndarray) -> np.ndarray:
+        """This rank's part of the whole box's budget: rank 0 takes the sums over blocks; with a z
+        split alone, the mass lost through the lower and upper z faces goes to the blocks of those
+        faces, which go on adding to it as one process would (so it stays bit for bit)."""
+        out = np.zeros(budget.size)
+        dims = self.decomposition.dims
+        cz = self.decomposition.coords(self.rank)[2]
+        z_only = dims[0] == dims[1] == 1
+        for i, value in enumerate(budget):
+            if i == 2 and z_only:
+                out[i] = value if cz == 0 else 0.0
+            elif i == 3 and z_only:
+                out[i] = value if cz == dims[2] - 1 else 0.0
+            elif self.rank == 0:
+                out[i] = value
+        return out
 
     def primitive(self) -> tuple[np.ndarray, ...]:
         """Whole-box density and full velocities on rank 0 (collective; None elsewhere)."""

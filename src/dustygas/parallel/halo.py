@@ -47,7 +47,7 @@ class HaloExchange:
                 continue
             lo = decomposition.neighbour(rank, axis, -1, periodic[axis])
             hi = decomposition.neighbour(rank, axis, +1, periodic[axis])
-            self.plan.append((axis, lo, hi, ghosts[axis], decomposition.block_shape[axis]))
+            self.plan.append((axis, lo, hi, ghosts[axis], decomposition.block_shape_of(rank)[axis]))
 
     def neighbour_faces(self) -> dict[str, bool]:
         """Which faces (``x_lo`` ... ``z_hi``) another block fills."""

@@ -64,6 +64,9 @@ class ParticleBoundaries(NamedTuple):
     z: int
     q_omega_lx: float  # speed at which the radial images slide along y
     jump: float  # q Omega Lx if full azimuthal velocities are stored, else 0
+    #: faces (bit ``2 axis + side``, side 1: upper) that border another block: no images are
+    #: built there, the neighbour's particles arrive as halo records (:mod:`dustygas.parallel`)
+    neighbours: int = 0
 
 
 def make_particle_boundaries(kinds: tuple[str, str, str], gas_kinds: tuple[str, str, str],
@@ -255,7 +258,7 @@ def _images_along(axis, m0, m1, n, lay, sp, pb, reach, order, y_shift, keys, wts
             c_ax = i if axis == 0 else (j if axis == 1 else k)
             for side in range(2):
                 near = c_ax < R if side == 0 else c_ax >= nn - R
-                if not near:
+                if not near or (pb.neighbours >> (2 * axis + side)) & 1:
                     continue
                 if periodic:
                     new = c_ax + nn if side == 0 else c_ax - nn

@@ -59,6 +59,7 @@ import numpy as np
 
 from ..errors import SetupError, SimulationError
 from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
+from ..grid.mesh import Spacing
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
 from .density import deposit_density
@@ -66,8 +67,9 @@ from .deposit import filter_field, image_values, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
-                   occupied_rows, shear_frame_forces, trajectory_columns)
+                   shear_frame_forces, trajectory_columns)
 from .outputs import CoupledOutputs
+from .blocks import OneBlock
 from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, force_table
 
@@ -79,7 +81,7 @@ __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_densit
 GAS_INTEGRATORS = ("vl2", "ctu")
 
 
-class ParticleGridEngine(CoupledOutputs):
+class ParticleGridEngine(CoupledOutputs, OneBlock):
     """A two-stage gas engine (VL2) with Lagrangian dust particles (module docstring).
 
     Parameters
@@ -144,8 +146,8 @@ class ParticleGridEngine(CoupledOutputs):
         smooth: bool = True,
     ):
         if getattr(gas, "distributed", False):
-            raise SetupError("particles do not run on several MPI ranks yet (gas-only grid problems do): "
-                             "run this problem with one process")
+            raise SetupError("a ParticleGridEngine takes the whole box's gas: decompose the coupled engine with "
+                             "dustygas.parallel.coupled.distribute")
         if gas.scheme_names["integrator"] not in GAS_INTEGRATORS:
             raise SetupError(f"particles need the {' or '.join(GAS_INTEGRATORS)} gas integrator, "
                              f"not {gas.scheme_names['integrator']}")
@@ -161,6 +163,11 @@ class ParticleGridEngine(CoupledOutputs):
             raise SetupError("stopping times must be positive and finite")
         if particles.n and (particles.species.min() < 0 or particles.species.max() >= len(t_stop)):
             raise SetupError(f"particle species must be in 0 .. {len(t_stop) - 1}")
+        #: the arguments this engine was built with (a decomposed run builds one per block from them)
+        self.options = dict(t_stop=t_stop.copy(), drag_law=drag_law, kernel=kernel, feedback=feedback,
+                            particle_terms=particle_terms, gas_terms=gas_terms, boundaries=boundaries,
+                            boundary_keys=boundary_keys, cfl=cfl, drag_cfl=drag_cfl, mode=mode, rho_ref=rho_ref,
+                            smooth=smooth)
         cfl = gas.cfl if cfl is None else float(cfl)
         if not 0 < cfl <= 1:
             raise SetupError(f"particle cfl={cfl}: must be in (0, 1] (a particle moves less than a cell per step)")
@@ -207,7 +214,9 @@ class ParticleGridEngine(CoupledOutputs):
         self._frame_forces = shear_frame_forces(self.forces, self._shear_rate)
         self._field_kinds = field_ghost_kinds(geom.boundaries, active)
         m = gas.mesh
-        self._lay, self._sp, self._off = m.layout, m.spacing, m.offsets
+        # the spacing of the whole mesh (origin, box) and the block's offsets: particle cells and
+        # weights, cell centres and the periodic images are those of the whole box
+        self._lay, self._sp, self._off = m.layout, Spacing(*m.dx, *m.origin, *m.size), m.offsets
         self._remap = gas.remap_codes
         # kernel, reach and field arrays
         self._order = KERNELS[kernel]
@@ -241,6 +250,7 @@ class ParticleGridEngine(CoupledOutputs):
         self._ptr = np.zeros(self._ncell, dtype=np.int64)
         nyr, nzr = ny + 2 * self._reach[1], nz + 2 * self._reach[2]
         self._img_row_start = np.zeros(nyr * nzr + 1, dtype=np.int64)
+        self._img_capacity = 0
         self._budget = np.zeros((PARTICLE_CHUNKS, 3))
         self._vmax_work = np.zeros((PARTICLE_CHUNKS, 3))
         #: time integrals: [mass, p_x, p_y, p_z] that left through each face; momentum the
@@ -250,6 +260,10 @@ class ParticleGridEngine(CoupledOutputs):
         self.gas_terms_impulse = np.zeros(3)
         self._allocate(max(particles.capacity, 1))
         self._images = 0
+        #: particles of neighbouring blocks held after the store's own (halo sources; 0 in one block)
+        self._n_halo = 0
+        #: sorts so far (the outputs sort too: a decomposed run repeats them on its blocks)
+        self.sorts = 0
         self.mode = None if mode is None else tuple(int(x) for x in mode)
         self._mode_setup()
         self._check_inside()
@@ -272,20 +286,23 @@ class ParticleGridEngine(CoupledOutputs):
         self._zero_cols = np.zeros(capacity, dtype=np.int64)
         self._leaving = np.zeros(capacity, dtype=np.int64)
         self._capacity = capacity
-        self._img_capacity = 0
         self._grow_images(max(16, capacity // 4))
 
     def _grow_images(self, m: int) -> None:
+        """Room for ``m`` image records (the present ones kept)."""
         if m <= self._img_capacity:
             return
         W = 2 * self._R + 1
         m = max(m, 2 * self._img_capacity)
+        old = (self._img_src, self._img_cell, self._img_w, self._img_dvy) if self._img_capacity else ()
         self._img_src = np.zeros(m, dtype=np.int64)
         self._img_cell = np.zeros((m, 3), dtype=np.int64)
         self._img_w = np.zeros((m, 3, W))
         self._img_dvy = np.zeros(m)
         self._img_val = np.zeros((m, 4))
         self._img_col = np.zeros(m, dtype=np.int64)
+        for new, was in zip((self._img_src, self._img_cell, self._img_w, self._img_dvy), old):
+            new[:was.shape[0]] = was
         self._img_capacity = m
 
     def _check_inside(self) -> None:
@@ -294,7 +311,7 @@ class ParticleGridEngine(CoupledOutputs):
         for axis in range(3):
             if self.geometry.shape[axis] == 1 or not pos.shape[1]:
                 continue
-            lo, length = self.geometry.lower[axis], self.geometry.box[axis]
+            lo, length = self.mesh.origin[axis], self.geometry.box[axis]
             if pos[axis].min() < lo or pos[axis].max() >= lo + length:
                 raise SetupError(f"particle positions along {'xyz'[axis]} must lie in [{lo:g}, {lo + length:g})")
 
@@ -317,9 +334,12 @@ class ParticleGridEngine(CoupledOutputs):
 
     def timestep(self) -> float:
         """Smallest of the gas Courant step, the particle Courant step and the drag limit."""
-        dt = self.gas.timestep()
+        return self._limit_step(self.gas.timestep(), self._vmax)
+
+    def _limit_step(self, dt: float, vmax) -> float:
+        """The gas step ``dt`` limited by the particles (largest speeds ``vmax`` per axis) and the drag."""
         rate = 0.0
-        for n, d, v in zip(self.geometry.shape, self.geometry.dx, self._vmax):
+        for n, d, v in zip(self.geometry.shape, self.geometry.dx, vmax):
             if n > 1:
                 rate = max(rate, v / d)
         if rate > 0:
@@ -351,6 +371,7 @@ class ParticleGridEngine(CoupledOutputs):
     def _prepare(self, t: float) -> None:
         """Sort, weights and image records of the particles as they are (positions at ``t``)."""
         p = self.particles
+        self.sorts += 1
         if p.capacity > self._capacity:
             self._allocate(p.capacity)
         pos, vel, species, pid, mass = p.buffers()
@@ -359,7 +380,8 @@ class ParticleGridEngine(CoupledOutputs):
                            self._order_work, self._ptr, self._cell_start, self._fwork, self._iwork, self._order, self._R,
                            self._wts)
         if bad >= 0:
-            self._stop_nonfinite(bad)
+            self._stop_nonfinite(bad)  # raises (a block of a decomposed run first tells the others)
+            return
         shift = self.geometry.shear_offset(t)
         args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
                 self._cell_start)
@@ -368,6 +390,8 @@ class ParticleGridEngine(CoupledOutputs):
             if m <= self._img_capacity:
                 break
             self._grow_images(m)
+        m = self._add_halo(m)
+        pos, vel, species, pid, mass = p.buffers()
         sort_images(m, self._lay, self._reach, pid, self._img_src, self._img_cell, self._img_w, self._img_dvy,
                     self._img_row_start)
         self._images = m
@@ -400,9 +424,8 @@ class ParticleGridEngine(CoupledOutputs):
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
         (with the ghost rows beyond them where they reach a z face)."""
         shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
-        nz, gz = self.geometry.shape[2], g[2]
-        k_lo = rows[0] + gz if rows[0] > 0 else 0
-        k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
+        k_lo, k_hi = self._padded_rows(rows, g[2])
+        self._field_halo(field, g[2])
         fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
         if self.smooth:
             filter_field(field, self._active, k_lo, k_hi)
@@ -435,13 +458,13 @@ class ParticleGridEngine(CoupledOutputs):
         u_old = gas.stage_input(0)
         if self.feedback:
             back = 0.5 * h if self._active[0] else 0.0
-            dust_values(pos, vel, species, mass, n, self._inv_vol, True, self._shear_rate, back, self._values,
-                        self._cols)
+            dust_values(pos, vel, species, mass, n + self._n_halo, self._inv_vol, True, self._shear_rate, back,
+                        self._values, self._cols)
             self._dep1[...] = 0.0
             self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, -1, 0)
             if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
-                explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._shear_rate, self._dep1, self.nspecies,
-                                     self.species, self._source)
+                explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._off, self._shear_rate, self._dep1,
+                                     self.nspecies, self.species, self._source)
         # 3. gas predictor
         use_ext = self.feedback or bool(self.gas_terms)
         if use_ext:
@@ -453,27 +476,32 @@ class ParticleGridEngine(CoupledOutputs):
         t_half = t + 0.5 * h
         # 4. the trajectory field
         pred_dt = gas.stage_weight(0) * h
-        nx, ny, nz = self.geometry.shape
         # the deposit reaches R rows beyond a particle's and the filter spreads it two more, which the
         # z pass filters only 2 rows inside the range: R + 4 (R + 2 loses momentum near a thin layer)
         margin = self._R + (4 if self.smooth else 0)
-        rows = occupied_rows(self._keys, n, nx, ny, nz, margin, self._field_kinds[2] == 0)
+        rows = self._occupied_rows(n, margin)
         self.field_rows = rows
+        mine = self._block_rows(rows)
         if self._mesh_term is not None:
             self._mesh_term.update(self, u_half[(0,) + self.mesh.interior()], t_half)
             self._mesh_field[...] = self._mesh_term.field
-        cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
-                          self.nspecies, self.species, self._frame_forces, self._mesh_field, self._shear_rate, self.feedback,
-                          self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
+        if mine[1] > mine[0]:
+            cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._off,
+                              self._dep1, self.nspecies, self.species, self._frame_forces, self._mesh_field,
+                              self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
+                              mine[1])
         self._fill_and_filter(self._traj, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
+        self._budget[...] = 0.0  # the kick writes the rows of its chunks only: fewer than 64 with few particles
+        self._vmax_work[...] = 0.0
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
              self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
              h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
+            self._kicked(n)
             self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
             self._fill_and_filter(self._dep2, self._g2, t_half, rows)

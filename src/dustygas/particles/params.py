@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import Config, Param
+from ..parallel.comm import launched_under_mpi
 from .boundaries import PARTICLE_BOUNDARIES
 from .coupling import ParticleGridEngine
 from .interp import KERNELS
@@ -72,8 +73,14 @@ def lattice_positions(shape: tuple[int, int, int], lower, dx, lattice: int, offs
 
 def particle_engine_from_config(cfg: Config, gas, store: ParticleStore, t_stop, cls=ParticleGridEngine,
                                 **kwargs) -> ParticleGridEngine:
-    """A :class:`ParticleGridEngine` (or subclass ``cls``) with the ``[particles]`` section of ``cfg``."""
+    """A :class:`ParticleGridEngine` (or subclass ``cls``) with the ``[particles]`` section of ``cfg``;
+    under ``mpiexec``, its :class:`~dustygas.parallel.coupled.DistributedParticleEngine`."""
     p = cfg.particles
     kwargs.setdefault("boundaries", particle_boundaries(cfg, gas.geometry.boundaries))
-    return cls(gas, store, t_stop, kernel=p.kernel, feedback=p.feedback, cfl=p.cfl if p.cfl > 0 else None,
-               drag_cfl=p.drag_cfl, smooth=p.smooth, **kwargs)
+    engine = cls(gas, store, t_stop, kernel=p.kernel, feedback=p.feedback, cfl=p.cfl if p.cfl > 0 else None,
+                 drag_cfl=p.drag_cfl, smooth=p.smooth, **kwargs)
+    if launched_under_mpi():  # the whole box on every rank, then each keeps its block (mpi4py imported only here)
+        from ..parallel.coupled import distribute
+
+        return distribute(engine)  # type: ignore[return-value]
+    return engine

@@ -66,8 +66,8 @@ def dust_values(pos, vel, species, mass, n, inv_vol, momentum, shear_rate, back,
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, nsp, sp_tab, ft, mesh_field, shear_rate,
-                      feedback, traj, gt, c_rho, c_mesh, k_lo, k_hi) -> None:
+def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, off, dep, nsp, sp_tab, ft, mesh_field,
+                      shear_rate, feedback, traj, gt, c_rho, c_mesh, k_lo, k_hi) -> None:
     """The trajectory field of the domain cells of rows ``k_lo .. k_hi-1`` (columns
     :func:`trajectory_columns`).
 
@@ -81,7 +81,8 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
     (periodic across a shearing box), with ``ft`` the forces of that frame
     (:func:`shear_frame_forces`): there the drift of a uniform dust through uniform gas
     (NSH) has constant velocities, A = 0 and B_k = 0. ``traj`` has ``gt = (gx, gy, gz)`` ghost
-    layers (filled later).
+    layers (filled later). ``sp``, ``off``: the whole mesh's spacing and the block's offsets
+    (cell centres ``x0 + (i0 + i + 1/2) dx``, those of the whole mesh bit for bit).
     """
     nx, ny = lay.nx, lay.ny
     gx, gy, gz = gas_g
@@ -108,9 +109,9 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
         for r in range(chunk * nrows // nchunk, (chunk + 1) * nrows // nchunk):
             k = k_lo + r % nk
             j = r // nk
-            z = sp.z0 + (k + 0.5) * sp.dz
+            z = sp.z0 + (off.k0 + k + 0.5) * sp.dz
             for i in range(nx):
-                x = sp.x0 + (i + 0.5) * sp.dx
+                x = sp.x0 + (off.i0 + i + 0.5) * sp.dx
                 kk, jj, ii = k + gz, j + gy, i + gx
                 rho0 = u_old[0, kk, jj, ii]
                 rhoh = u_half[0, kk, jj, ii]
@@ -176,7 +177,7 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, dep, ns
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def explicit_drag_source(u_old, gas_g, sp, shear_rate, dep, nsp, sp_tab, out) -> None:
+def explicit_drag_source(u_old, gas_g, sp, off, shear_rate, dep, nsp, sp_tab, out) -> None:
     """The drag of the dust on the gas at ``t^n``, ``S = Σ_s ρ_s (V_s - u)/T_s`` per domain
     cell (momentum per volume and time, ``out`` ``(3, nz, ny, nx)``), from the dust deposit
     ``dep`` ``(nz, ny, nx, 4 nsp)`` (:func:`dust_values`: velocities relative to the shear
@@ -190,7 +191,7 @@ def explicit_drag_source(u_old, gas_g, sp, shear_rate, dep, nsp, sp_tab, out) ->
             for i in range(nx):
                 kk, jj, ii = k + gz, j + gy, i + gx
                 rho = u_old[0, kk, jj, ii]
-                shear = shear_rate * (sp.x0 + (i + 0.5) * sp.dx)
+                shear = shear_rate * (sp.x0 + (off.i0 + i + 0.5) * sp.dx)
                 for c in range(3):
                     out[c, k, j, i] = 0.0
                 for s in range(nsp):

@@ -131,6 +131,11 @@ class ParticleStore:
         self._mass[s] = mass
         self.n += m
 
+    def reserve(self, capacity: int) -> None:
+        """Room for ``capacity`` particles (the arrays grow, the particles stay)."""
+        if capacity > self.capacity:
+            self._allocate(int(capacity))
+
     def remove(self, keep: np.ndarray) -> None:
         """Keep only the particles where ``keep`` (N,) is True, in their order."""
         m = compact(self._pos, self._vel, self._species, self._pid, self._mass, self.n, np.asarray(keep, dtype=np.bool_))

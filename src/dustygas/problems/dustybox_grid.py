@@ -42,6 +42,7 @@ class DustyBoxEngine(ParticleGridEngine):
 @register
 class DustyBoxGrid(Problem):
     name = "dustybox-grid"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = "Uniform gas + particles with constant drag: relative velocity decay (Laibe & Price 2011)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=5.0),

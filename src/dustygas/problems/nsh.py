@@ -57,6 +57,7 @@ class NSHEngine(ParticleGridEngine):
 @register
 class NSH(Problem):
     name = "nsh"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = "NSH steady drift of gas and N dust species (thesis eq. 4.8) in a shearing box with particles."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=20.0 * math.pi, dt_history=0.1),

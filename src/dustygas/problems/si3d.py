@@ -102,6 +102,7 @@ def available_memory() -> int:
 @register
 class SI3D(Problem):
     name = "si3d"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = ("Stratified shearing box, non-linear streaming instability (thesis Fig 4.7 physics at laptop size: "
                "tau_s = 1, Z = 0.03, Pi = 0.05, 32x32x48, 1 ppc).")
     schema = {

@@ -46,6 +46,7 @@ GRAVITY = {
 @register
 class SI3DSelfGravity(SI3D):
     name = "si3d-selfgravity"
+    runs_on_ranks = False  # self-gravity: the FFT Poisson solve needs the whole box (not decomposed yet)
     summary = ("si3d with particle self-gravity switched on in the saturated state (G~ = 0.5 at 5 orbits, to 8): "
                "bound clumps, planetesimals.")
     schema = {**SI3D.schema,

@@ -38,6 +38,7 @@ __all__ = ["SINonlinear"]
 @register
 class SINonlinear(Problem):
     name = "si-nonlinear"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = "Unstratified non-linear streaming instability from a random-noise start (Johansen & Youdin 2007)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=50.0, dt_history=0.1, dt_snapshot=5.0),

@@ -223,6 +223,7 @@ def _scheme(cfg) -> dict:
 @register
 class SILinear(Problem):
     name = "si-linear"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = "One linear streaming-instability eigenmode in a 2D x-z box of gas + particles (YJ07, BS10)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=6.0, dt_history=0.01),

@@ -28,6 +28,7 @@ __all__ = ["SIMultiSpecies"]
 @register
 class SIMultiSpecies(Problem):
     name = "si-multispecies"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = "One linear streaming-instability eigenmode of gas + N particle species in a 2D x-z box (BKP19 linC)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=8.0, dt_history=0.01),

@@ -67,6 +67,7 @@ def frame_velocity(taus: float, mu: float, vz: float, frame: str) -> tuple[float
 @register
 class SISettling(Problem):
     name = "si-settling"
+    runs_on_ranks = True  # particles + gas: split along z under mpiexec (dustygas.parallel.coupled)
     summary = "Settling-enhanced streaming instability: one eigenmode with a steady vertical dust drift (Fig 4.6)."
     schema = {
         "run": with_defaults(RUN_SCHEMA, tlim=40.0, dt_history=0.05),
