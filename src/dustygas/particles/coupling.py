@@ -55,6 +55,7 @@ from __future__ import annotations
 
 from typing import Sequence
 
+import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
@@ -62,7 +63,7 @@ from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
 from .density import deposit_density
-from .deposit import filter_field, image_values, pull_deposit, sort_images
+from .deposit import filter_field, filter_field_xz, image_values, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
@@ -228,6 +229,10 @@ class ParticleGridEngine(CoupledOutputs):
         self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
         gx2, gy2, gz2 = self._g2
         self._dep2 = np.zeros((nz + 2 * gz2, ny + 2 * gy2, nx + 2 * gx2, 3))
+        #: a 2D x-z box filters out of place, into a second array per field (one parallel region)
+        self._xz = self.smooth and active == (True, False, True)
+        self._traj_out = np.zeros_like(self._traj) if self._xz else self._traj
+        self._dep2_out = np.zeros_like(self._dep2) if self._xz else self._dep2
         #: the ghost widths of the deposit targets as the int64 arrays the kernels take
         self._ghost_arrays = {g: np.array(g, dtype=np.int64) for g in ((0, 0, 0), self._g2)}
         self._dep1 = np.zeros((nz, ny, nx, 4 * self.nspecies))
@@ -396,16 +401,21 @@ class ParticleGridEngine(CoupledOutputs):
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
                      self._img_val[:, :nv], img_col)
 
-    def _fill_and_filter(self, field, g, t: float, rows: tuple[int, int]) -> None:
+    def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int]) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
-        (with the ghost rows beyond them where they reach a z face)."""
+        (with the ghost rows beyond them where they reach a z face); returns the array that holds
+        the result: ``out`` in a 2D x-z box (filtered out of place), else ``field`` itself."""
         shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
         nz, gz = self.geometry.shape[2], g[2]
         k_lo = rows[0] + gz if rows[0] > 0 else 0
         k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
         fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
+        if self._xz:
+            filter_field_xz(field, out, k_lo, k_hi, max(1, min(numba.get_num_threads(), 8)))
+            return out
         if self.smooth:
             filter_field(field, self._active, k_lo, k_hi)
+        return field
 
     def _step_coefficients(self, h: float) -> None:
         if h != self._coef_dt:
@@ -465,19 +475,19 @@ class ParticleGridEngine(CoupledOutputs):
         cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay, self._sp, self._dep1,
                           self.nspecies, self.species, self._frame_forces, self._mesh_field, self._shear_rate, self.feedback,
                           self._traj, self._gt, self._c_rho, self._c_mesh, rows[0], rows[1])
-        self._fill_and_filter(self._traj, self._gt, t_half, rows)
+        traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
-             self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
+             traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
              h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
             self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
-            self._fill_and_filter(self._dep2, self._g2, t_half, rows)
-            copy_domain(self._dep2, self._ghost_arrays[self._g2], self._source, 1.0)
+            dep2 = self._fill_and_filter(self._dep2, self._dep2_out, self._g2, t_half, rows)
+            copy_domain(dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True
         # 6. gas corrector
         if use_ext:

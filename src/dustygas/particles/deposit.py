@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["sort_images", "image_values", "pull_deposit", "filter_field", "ROW_CHUNKS"]
+__all__ = ["sort_images", "image_values", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
 
 #: rows are split into this many chunks for the threads (more than threads: a balanced split)
 ROW_CHUNKS = 64
@@ -193,8 +193,9 @@ def _filter_x(row, buf, nv):
     """:func:`filter_field` along x of one flattened row ``(NX nv)`` in place (``buf`` its length)."""
     n = row.shape[0]
     buf[:] = row
-    for q in range(2 * nv, n - 2 * nv):
-        row[q] = 0.0625 * (10.0 * buf[q] + 4.0 * (buf[q - nv] + buf[q + nv]) - (buf[q - 2 * nv] + buf[q + 2 * nv]))
+    # views at the five offsets, indexed from 0: an index `q - nv` would cost a negative-index
+    # check per load and keep the loop from being vectorised (several times slower)
+    _filter_into(row[2 * nv:], buf, buf[nv:], buf[2 * nv:], buf[3 * nv:], buf[4 * nv:], 0, n - 4 * nv)
 
 
 @njit(cache=True, error_model="numpy")
@@ -261,3 +262,57 @@ def filter_field(f, active, k_lo, k_hi) -> None:
                 q1 = (c % nq + 1) * L // nq
                 ring = np.empty((3, q1 - q0))
                 _filter_across(f3, 2, j, lo, hi, q0, q1, ring)
+
+
+@njit(cache=True, error_model="numpy")
+def _copy_into(src, dst, n):
+    """``dst[0 .. n-1] = src[0 .. n-1]``."""
+    for q in range(n):
+        dst[q] = src[q]
+
+
+@njit(cache=True, error_model="numpy")
+def _filter_x_piece(a, x, q0, width, nv):
+    """Elements ``q0 .. q0 + width - 1`` of the row ``a`` ``(NX nv)`` filtered along x into
+    ``x[0 .. width-1]`` (as :func:`_filter_x`: the two outermost cells of either end copied)."""
+    n = a.shape[0]
+    e = 2 * nv
+    lo = min(max(e - q0, 0), width)  # x[lo .. hi-1] are filtered
+    hi = max(min(n - e - q0, width), lo)
+    _copy_into(a[q0:], x, lo)
+    b = q0 + lo
+    _filter_into(x[lo:], a[b - e:], a[b - nv:], a[b:], a[b + nv:], a[b + e:], 0, hi - lo)
+    _copy_into(a[q0 + hi:], x[hi:], width - hi)
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def filter_field_xz(f, out, k_lo, k_hi, npiece) -> None:
+    """:func:`filter_field` of a 2D x-z field ``f`` ``(NZ, 1, NX, nv)`` (x and z active), out of
+    place: ``out`` (the same shape) receives exactly what :func:`filter_field` would leave in ``f``,
+    which keeps its values. One parallel region over ``npiece`` pieces of the (x, value) rows
+    (any number: every element is the same expression of the same inputs): each piece filters
+    its columns along x into a scratch of the rows ``k_lo .. k_hi-1`` and then along z into
+    ``out``; rows outside ``k_lo .. k_hi-1`` are copied.
+    """
+    NZ, NY, NX, nv = f.shape
+    L = NX * nv
+    a2 = f.reshape((NZ, L))
+    b2 = out.reshape((NZ, L))
+    lo, hi = max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
+    nk = max(k_hi - k_lo, 0)
+    for c in prange(npiece):
+        q0 = c * L // npiece
+        q1 = (c + 1) * L // npiece
+        width = q1 - q0
+        xf = np.empty((nk, width))  # the rows filtered along x
+        for k in range(k_lo, k_hi):
+            _filter_x_piece(a2[k], xf[k - k_lo], q0, width, nv)
+        for k in range(NZ):
+            b = b2[k, q0:q1]
+            if k < k_lo or k >= k_hi:
+                _copy_into(a2[k, q0:q1], b, width)
+            elif k < lo or k >= hi:
+                _copy_into(xf[k - k_lo], b, width)
+            else:
+                r = k - k_lo
+                _filter_into(b, xf[r - 2], xf[r - 1], xf[r], xf[r + 1], xf[r + 2], 0, width)
