@@ -399,7 +399,7 @@ class ParticleGridEngine(CoupledOutputs):
         img_col = self._img_col
         pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
-                     self._img_val[:, :nv], img_col)
+                     self._img_val[:, :nv], img_col, numba.get_num_threads())
 
     def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int]) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``

@@ -7,6 +7,7 @@ a set-up's density and an analysis's clump masses are what the engine would depo
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from .boundaries import build_images, make_particle_boundaries
@@ -59,5 +60,5 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     image_values(m, img_src, img_dvy, values, -1, 0, img_val, cols, img_col)
     out = np.zeros((nz, ny, nx, 1))
     pull_deposit(out, np.zeros(3, dtype=np.int64), lay, reach, R, cell_start, keys, wts, values, cols, row_start,
-                 img_cell, img_w, img_val, img_col)
+                 img_cell, img_w, img_val, img_col, numba.get_num_threads())
     return out[..., 0]
