@@ -391,7 +391,8 @@ class ParticleGridEngine(CoupledOutputs):
         )
 
     def _deposit(self, out, g, values, cols, vy_col: int, mass_col: int) -> None:
-        """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``."""
+        """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``
+        (its domain cells set to the deposit; its ghosts left alone)."""
         m = self._images
         nv = values.shape[1]
         image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv], cols,
@@ -399,7 +400,7 @@ class ParticleGridEngine(CoupledOutputs):
         img_col = self._img_col
         pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
-                     self._img_val[:, :nv], img_col, numba.get_num_threads())
+                     self._img_val[:, :nv], img_col, numba.get_num_threads(), True)
 
     def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int]) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
@@ -424,6 +425,16 @@ class ParticleGridEngine(CoupledOutputs):
                     step_coefficients(float(self.species.t_stop[s]), self.forces.gravity_z, h, self._coef[s])
             self._coef_dt = h
 
+    def _stage_source(self, state: np.ndarray, t: float) -> np.ndarray:
+        """The momentum source of a gas stage: the back-reaction plus the gas terms (``state`` at ``t``).
+        Without gas terms the back-reaction array itself (the gas stages only read it)."""
+        if not self.gas_terms:
+            return self._source
+        ext = self._ext
+        ext[...] = self._source if self.feedback else 0.0
+        self._gas_terms(state, t, ext)
+        return ext
+
     def _gas_terms(self, state: np.ndarray, t: float, out: np.ndarray) -> None:
         if self.gas_terms:
             rho = state[(0,) + self.mesh.interior()]
@@ -447,18 +458,14 @@ class ParticleGridEngine(CoupledOutputs):
             back = 0.5 * h if self._active[0] else 0.0
             dust_values(pos, vel, species, mass, n, self._inv_vol, True, self._shear_rate, back, self._values,
                         self._cols)
-            self._dep1[...] = 0.0
             self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, -1, 0)
             if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
                 explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._shear_rate, self._dep1, self.nspecies,
                                      self.species, self._source)
         # 3. gas predictor
         use_ext = self.feedback or bool(self.gas_terms)
-        if use_ext:
-            ext = self._ext
-            ext[...] = self._source if self.feedback else 0.0
-            self._gas_terms(u_old, t, ext)
-        gas.advance_stage(0, h, ext if use_ext else None)
+        ext = self._stage_source(u_old, t) if use_ext else None
+        gas.advance_stage(0, h, ext)
         u_half = gas.stage_input(1)
         t_half = t + 0.5 * h
         # 4. the trajectory field
@@ -484,18 +491,16 @@ class ParticleGridEngine(CoupledOutputs):
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
-            self._dep2[...] = 0.0
             self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
             dep2 = self._fill_and_filter(self._dep2, self._dep2_out, self._g2, t_half, rows)
             copy_domain(dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True
         # 6. gas corrector
+        ext = None
         if use_ext:
-            ext = self._ext
-            ext[...] = self._source if self.feedback else 0.0
-            before = ext.sum(axis=(1, 2, 3)) if self.gas_terms else None
-            self._gas_terms(u_half, t_half, ext)
+            ext = self._stage_source(u_half, t_half)
             if self.gas_terms:
+                before = self._source.sum(axis=(1, 2, 3)) if self.feedback else 0.0
                 self.gas_terms_impulse += (ext.sum(axis=(1, 2, 3)) - before) * h * self.mesh.cell_volume
-        gas.advance_stage(1, h, ext if use_ext else None)
+        gas.advance_stage(1, h, ext)
         self._exchange(t + h)

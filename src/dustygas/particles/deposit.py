@@ -129,9 +129,10 @@ def _add_record(out2, row, base, I, w_r, wyz, rx, R, nx, vals_r, nv, nvo):
 
 @njit(cache=True, parallel=True, error_model="numpy")
 def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_val,
-                 img_col, nchunk) -> None:
+                 img_col, nchunk, clear=False) -> None:
     """Add to the domain cells of ``out`` ``(NZ, NY, NX, nv_out)`` (``g = (gx, gy, gz)`` ghost layers,
-    which are left alone) the deposit of the sorted particles and their image records (module docstring).
+    which are left alone) the deposit of the sorted particles and their image records (module
+    docstring); with ``clear``, set them to the deposit (zeroed first).
 
     Parameters
     ----------
@@ -171,6 +172,11 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
             continue
         j0, j1 = r0 // nz, (r1 - 1) // nz
         k0, k1 = (r0 % nz, (r1 - 1) % nz) if j0 == j1 else (0, nz - 1)
+        if clear:
+            for r in range(r0, r1):
+                row = out2[(r % nz + gz) * NY + r // nz + gy]
+                for q in range(nx * nvo):
+                    row[base + q] = 0.0
         t_row = np.empty(ntmax, dtype=np.int64)  # the chunk's rows a source row reaches
         t_sy = np.empty(ntmax, dtype=np.int64)  # and the weight slots there
         t_sz = np.empty(ntmax, dtype=np.int64)
