@@ -30,6 +30,12 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 
+#: compiled calls without a parallel region (in a 2D x-z box: the field ghosts are filled serially
+#: there); ``ctu_stage`` and ``advance_gas`` hold serial parts too (2D ghost fills, the radial flux
+#: correction, the sums), counted with the parallel kernels here
+SERIAL = ("build_images", "sort_images", "image_values", "fill_field_ghosts", "step_coefficients", "compact")
+
+
 def wrap_module(module, names, totals, walls, counts):
     """Replace ``module.name`` by a timing wrapper for every compiled function among ``names``."""
     clock, wall = time.process_time, time.perf_counter
@@ -99,6 +105,11 @@ def main() -> None:
     print(f"{'step with wrappers':<35}{1e6 * wrapped:>9.1f}{1e6 * wrapped_wall:>9.1f}")
     print(f"{'Python between the calls':<35}{1e6 * (wrapped - ksum / n):>9.1f}{1e6 * (wrapped_wall - wsum / n):>9.1f}")
     print(f"{'step without wrappers (best)':<35}{1e6 * best_cpu:>9.1f}{1e6 * best_wall:>9.1f}")
+    serial = sum(tot for name, tot in totals.items() if name in SERIAL) / n
+    python = wrapped - ksum / n
+    print(f"serial share of the step (CPU): Python {100 * python / wrapped:.1f} % + serial kernels "
+          f"{100 * serial / wrapped:.1f} % = {100 * (python + serial) / wrapped:.1f} % (kernels with parallel "
+          f"regions {100 * (ksum / n - serial) / wrapped:.1f} %)")
 
 
 if __name__ == "__main__":
