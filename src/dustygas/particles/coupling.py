@@ -63,7 +63,7 @@ from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
 from .density import deposit_density
-from .deposit import filter_field, filter_field_xz, image_values, pull_deposit, sort_images
+from .deposit import filter_field, filter_field_xz, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
@@ -289,8 +289,6 @@ class ParticleGridEngine(CoupledOutputs):
         self._img_cell = np.zeros((m, 3), dtype=np.int64)
         self._img_w = np.zeros((m, 3, W))
         self._img_dvy = np.zeros(m)
-        self._img_val = np.zeros((m, 4))
-        self._img_col = np.zeros(m, dtype=np.int64)
         self._img_capacity = m
 
     def _check_inside(self) -> None:
@@ -390,17 +388,12 @@ class ParticleGridEngine(CoupledOutputs):
             state={"particle_pos": p.pos.copy(), "particle_vel": p.vel.copy(), "particle_pid": p.pid.copy()},
         )
 
-    def _deposit(self, out, g, values, cols, vy_col: int, mass_col: int) -> None:
+    def _deposit(self, out, g, values, cols) -> None:
         """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``
         (its domain cells set to the deposit; its ghosts left alone)."""
-        m = self._images
-        nv = values.shape[1]
-        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv], cols,
-                     self._img_col)
-        img_col = self._img_col
         pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
-                     self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
-                     self._img_val[:, :nv], img_col, numba.get_num_threads(), True)
+                     self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w, self._img_src,
+                     numba.get_num_threads(), True)
 
     def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int]) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
@@ -458,7 +451,7 @@ class ParticleGridEngine(CoupledOutputs):
             back = 0.5 * h if self._active[0] else 0.0
             dust_values(pos, vel, species, mass, n, self._inv_vol, True, self._shear_rate, back, self._values,
                         self._cols)
-            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, -1, 0)
+            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols)
             if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
                 explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._shear_rate, self._dep1, self.nspecies,
                                      self.species, self._source)
@@ -491,7 +484,7 @@ class ParticleGridEngine(CoupledOutputs):
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
-            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
+            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols)
             dep2 = self._fill_and_filter(self._dep2, self._dep2_out, self._g2, t_half, rows)
             copy_domain(dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True

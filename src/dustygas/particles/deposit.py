@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["sort_images", "image_values", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
+__all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
 
 #: the filter's planes are split into this many chunks for the threads (more than threads: a balanced split)
 ROW_CHUNKS = 64
@@ -87,21 +87,6 @@ def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row
                 img_w[m, a, s] = w[o, a, s]
 
 
-@njit(cache=True, error_model="numpy")
-def image_values(m_total, img_src, img_dvy, values, vy_col, mass_col, out, col, img_col) -> None:
-    """``out[m] = values[img_src[m]]``, plus ``img_dvy[m] values[., mass_col]`` in column ``vy_col``
-    (the azimuthal momentum of a shear-periodic image; ``vy_col < 0``: none), and the column of
-    the source particle ``img_col[m] = col[img_src[m]]``."""
-    nv = values.shape[1]
-    for m in range(m_total):
-        p = img_src[m]
-        img_col[m] = col[p]
-        for c in range(nv):
-            out[m, c] = values[p, c]
-        if vy_col >= 0:
-            out[m, vy_col] += img_dvy[m] * values[p, mass_col]
-
-
 @njit(cache=True, error_model="numpy", inline="always")
 def _add_record(out2, row, base, I, w_r, wyz, rx, R, nx, vals_r, nv, nvo):
     """A record (weights ``w_r`` (3, W), values ``vals_r`` (nv,)) from cell ``I`` into row ``row``
@@ -128,8 +113,8 @@ def _add_record(out2, row, base, I, w_r, wyz, rx, R, nx, vals_r, nv, nvo):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_val,
-                 img_col, nchunk, clear=False) -> None:
+def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_src,
+                 nchunk, clear=False) -> None:
     """Add to the domain cells of ``out`` ``(NZ, NY, NX, nv_out)`` (``g = (gx, gy, gz)`` ghost layers,
     which are left alone) the deposit of the sorted particles and their image records (module
     docstring); with ``clear``, set them to the deposit (zeroed first).
@@ -143,8 +128,9 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
         The particles' canonical order, cells and weights ``(N, 3, 2R + 1)``.
     values, col
         ``(N, nv)`` what each particle deposits, into columns ``col[p] .. col[p] + nv - 1``.
-    img_row_start, img_cell, img_w, img_val, img_col
-        The image records, sorted by :func:`sort_images`, with their values and columns.
+    img_row_start, img_cell, img_w, img_src
+        The image records, sorted by :func:`sort_images`; a record deposits the values of its
+        source particle ``img_src[m]`` into that particle's columns.
     nchunk
         Chunks of the domain rows ``(k, j)`` (``r = j nz + k``: z fastest, so that the chunks of a thin
         dust layer split it along y) handed to the threads; any number gives the same sums.
@@ -199,11 +185,12 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
                 m = img_row_start[prow]
                 mend = img_row_start[prow + 1]
                 while m < mend and img_cell[m, 0] < 0:  # images beyond the lower x face first
+                    src = img_src[m]
                     for t in range(nt):
                         wyz = img_w[m, 1, t_sy[t]] * img_w[m, 2, t_sz[t]]
                         if wyz != 0.0:
-                            _add_record(out2, t_row[t], base + img_col[m], img_cell[m, 0], img_w[m], wyz, rx, R, nx,
-                                        img_val[m], nv, nvo)
+                            _add_record(out2, t_row[t], base + col[src], img_cell[m, 0], img_w[m], wyz, rx, R, nx,
+                                        values[src], nv, nvo)
                     m += 1
                 if 0 <= J < ny and 0 <= K < nz:
                     c0 = (K * ny + J) * nx
@@ -214,11 +201,12 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
                                 _add_record(out2, t_row[t], base + col[p], keys[p] - c0, wts[p], wyz, rx, R, nx,
                                             values[p], nv, nvo)
                 while m < mend:
+                    src = img_src[m]
                     for t in range(nt):
                         wyz = img_w[m, 1, t_sy[t]] * img_w[m, 2, t_sz[t]]
                         if wyz != 0.0:
-                            _add_record(out2, t_row[t], base + img_col[m], img_cell[m, 0], img_w[m], wyz, rx, R, nx,
-                                        img_val[m], nv, nvo)
+                            _add_record(out2, t_row[t], base + col[src], img_cell[m, 0], img_w[m], wyz, rx, R, nx,
+                                        values[src], nv, nvo)
                     m += 1
 
 
