@@ -17,6 +17,7 @@ gcc needs ``-fcommon`` in the compiler flags). One binary per problem.
 from __future__ import annotations
 
 import re
+import resource
 import subprocess
 import tempfile
 import time
@@ -40,18 +41,21 @@ def find_input(binary: Path, problem: str, subdir: str) -> Path:
 
 
 def run_athena(binary: Path, athinput: Path, overrides: list[str], workdir: Path | None = None) -> dict:
-    """Run ``binary -i athinput overrides...`` in a scratch directory; wall time, cycles, output."""
+    """Run ``binary -i athinput overrides...`` in a scratch directory; wall and CPU time, cycles, output."""
     with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         proc = subprocess.run([str(binary), "-i", str(athinput), *overrides], cwd=tmp, capture_output=True,
                               text=True, check=False)
         wall = time.perf_counter() - t0
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         if proc.returncode != 0:
             raise SystemExit(f"athena failed ({proc.returncode}): {proc.stderr[-500:] or proc.stdout[-500:]}")
         out = proc.stdout
         cycles = [int(c) for c in re.findall(r"^cycle=(\d+)", out, flags=re.M)]
         files = {p.name: p.read_text() for p in Path(tmp).glob("*.dat")}
-    return {"wall": wall, "cycles": cycles[-1] if cycles else 0, "stdout": out, "files": files}
+    return {"wall": wall, "cpu": cpu, "cycles": cycles[-1] if cycles else 0, "stdout": out, "files": files}
 
 
 def streaming_growth(text: str):

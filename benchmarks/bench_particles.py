@@ -138,10 +138,12 @@ def full_lina(threads: int, sets: list[str] | None = None) -> dict:
     sets = list(sets or [])
     si_engine(["grid.nx=8", "grid.nz=8", "run.tlim=0.001", *sets]).advance(1e-6)  # compile outside the timing
     with tempfile.TemporaryDirectory() as tmp:
+        cpu0 = time.process_time()
         res = api.run("si-linA", output=Path(tmp) / "linA",
                       set=[*sets, f"run.threads={threads}", "run.checkpoint_wall=0"])
+        cpu = time.process_time() - cpu0
         fit = measure_growth(Path(tmp) / "linA")
-    return dict(cycles=res.cycles, wall=res.wall, zone_cycles=res.throughput,
+    return dict(cycles=res.cycles, wall=res.wall, cpu=cpu, zone_cycles=res.throughput,
                 particle_updates=res.throughput, growth=fit.growth_rate, spread=fit.spread, window=fit.window)
 
 
@@ -156,12 +158,13 @@ def athena_lina(binary: Path, athinput: Path) -> dict:
     res = run_athena(binary, athinput, overrides)
     (amp,) = [text for name, text in res["files"].items() if name.startswith("Streaming2d")]
     fit = streaming_growth(amp)
-    return dict(cycles=res["cycles"], wall=res["wall"], zone_cycles=res["cycles"] * 64 * 64 / res["wall"],
+    return dict(cycles=res["cycles"], wall=res["wall"], cpu=res["cpu"], zone_cycles=res["cycles"] * 64 * 64 / res["wall"],
                 growth=fit.growth_rate, spread=fit.spread, window=fit.window)
 
 
 def _line(name: str, r: dict) -> str:
-    return (f"{name:<22} {r['cycles']:>7} cycles  wall {r['wall']:7.1f} s  {r['zone_cycles']:.3g} zone-cycles/s  "
+    return (f"{name:<22} {r['cycles']:>7} cycles  wall {r['wall']:7.1f} s  CPU {r['cpu']:7.1f} s  "
+            f"{r['zone_cycles']:.3g} zone-cycles/s  "
             f"growth {r['growth']:.5f} ({100 * (r['growth'] / LINA_GROWTH - 1):+.2f} %, window "
             f"{r['window'][0]:.2f}-{r['window'][1]:.2f}, fields within {100 * r['spread']:.2f} %)  load {load()}")
 
@@ -184,12 +187,15 @@ def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], ro
             runs.setdefault(key, []).append(r)
             print(_line(key, r), flush=True)
     ath = statistics.median(r["wall"] for r in runs["athena"])
-    print(f"# medians over {rounds} round(s); Athena {ath:.1f} s")
+    ath_cpu = statistics.median(r["cpu"] for r in runs["athena"])
+    print(f"# medians over {rounds} round(s); Athena {ath:.1f} s wall, {ath_cpu:.1f} s CPU")
     for key, rs in runs.items():
         if key == "athena":
             continue
         wall = statistics.median(r["wall"] for r in rs)
-        print(f"{key:<22} median wall {wall:7.1f} s  Athena / dustygas wall: {ath / wall:.2f}")
+        cpu = statistics.median(r["cpu"] for r in rs)
+        print(f"{key:<22} median wall {wall:7.1f} s, CPU {cpu:7.1f} s  Athena / dustygas: wall {ath / wall:.2f}, "
+              f"CPU {ath_cpu / cpu:.2f} (CPU counts a second thread's spin-waits: compare wall on a quiet machine)")
 
 
 def main() -> None:

@@ -145,3 +145,10 @@ def test_coupled_3d_shearing_box_does_not_depend_on_the_thread_count(tmp_path):
     own interpreter)."""
     sets = ["grid.nx=8", "grid.ny=8", "grid.nz=12", "problem.Hp=0.03"]
     assert_identical(results_at_threads("particles.test_kernels:thread_case", tmp_path, problem="si3d", sets=sets))
+
+
+def test_coupled_2d_xz_box_does_not_depend_on_the_thread_count(tmp_path):
+    """The same in a 2D x-z box (si-linA, 16², CTU gas step): its grid-scale filter runs out of
+    place over pieces of the rows and its deposits over chunks of rows, both as many as threads."""
+    sets = ["grid.nx=16", "grid.nz=16", "scheme.integrator=ctu", "scheme.cfl=0.8"]
+    assert_identical(results_at_threads("particles.test_kernels:thread_case", tmp_path, problem="si-linA", sets=sets))

@@ -55,6 +55,7 @@ from __future__ import annotations
 
 from typing import Sequence
 
+import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
@@ -63,7 +64,7 @@ from ..grid.mesh import Spacing
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
 from .density import deposit_density
-from .deposit import filter_field, image_values, pull_deposit, sort_images
+from .deposit import filter_field, filter_field_xz, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
@@ -237,6 +238,10 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._traj = np.zeros((nz + 2 * gz, ny + 2 * gy, nx + 2 * gx, ntraj))
         gx2, gy2, gz2 = self._g2
         self._dep2 = np.zeros((nz + 2 * gz2, ny + 2 * gy2, nx + 2 * gx2, 3))
+        #: a 2D x-z box filters out of place, into a second array per field (one parallel region)
+        self._xz = self.smooth and active == (True, False, True)
+        self._traj_out = np.zeros_like(self._traj) if self._xz else self._traj
+        self._dep2_out = np.zeros_like(self._dep2) if self._xz else self._dep2
         #: the ghost widths of the deposit targets as the int64 arrays the kernels take
         self._ghost_arrays = {g: np.array(g, dtype=np.int64) for g in ((0, 0, 0), self._g2)}
         self._dep1 = np.zeros((nz, ny, nx, 4 * self.nspecies))
@@ -299,8 +304,6 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._img_cell = np.zeros((m, 3), dtype=np.int64)
         self._img_w = np.zeros((m, 3, W))
         self._img_dvy = np.zeros(m)
-        self._img_val = np.zeros((m, 4))
-        self._img_col = np.zeros(m, dtype=np.int64)
         for new, was in zip((self._img_src, self._img_cell, self._img_w, self._img_dvy), old):
             new[:was.shape[0]] = was
         self._img_capacity = m
@@ -409,26 +412,27 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             state={"particle_pos": p.pos.copy(), "particle_vel": p.vel.copy(), "particle_pid": p.pid.copy()},
         )
 
-    def _deposit(self, out, g, values, cols, vy_col: int, mass_col: int) -> None:
-        """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``."""
-        m = self._images
-        nv = values.shape[1]
-        image_values(m, self._img_src, self._img_dvy, values, vy_col, mass_col, self._img_val[:, :nv], cols,
-                     self._img_col)
-        img_col = self._img_col
+    def _deposit(self, out, g, values, cols) -> None:
+        """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``
+        (its domain cells set to the deposit; its ghosts left alone)."""
         pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
-                     self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w,
-                     self._img_val[:, :nv], img_col)
+                     self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w, self._img_src,
+                     numba.get_num_threads(), True)
 
-    def _fill_and_filter(self, field, g, t: float, rows: tuple[int, int]) -> None:
+    def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int]) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
-        (with the ghost rows beyond them where they reach a z face)."""
+        (with the ghost rows beyond them where they reach a z face); returns the array that holds
+        the result: ``out`` in a 2D x-z box (filtered out of place), else ``field`` itself."""
         shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
         k_lo, k_hi = self._padded_rows(rows, g[2])
         self._field_halo(field, g[2])
         fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
+        if self._xz:
+            filter_field_xz(field, out, k_lo, k_hi, max(1, min(numba.get_num_threads(), 8)))
+            return out
         if self.smooth:
             filter_field(field, self._active, k_lo, k_hi)
+        return field
 
     def _step_coefficients(self, h: float) -> None:
         if h != self._coef_dt:
@@ -436,6 +440,16 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
                 if self.species.law[s] == FIXED:
                     step_coefficients(float(self.species.t_stop[s]), self.forces.gravity_z, h, self._coef[s])
             self._coef_dt = h
+
+    def _stage_source(self, state: np.ndarray, t: float) -> np.ndarray:
+        """The momentum source of a gas stage: the back-reaction plus the gas terms (``state`` at ``t``).
+        Without gas terms the back-reaction array itself (the gas stages only read it)."""
+        if not self.gas_terms:
+            return self._source
+        ext = self._ext
+        ext[...] = self._source if self.feedback else 0.0
+        self._gas_terms(state, t, ext)
+        return ext
 
     def _gas_terms(self, state: np.ndarray, t: float, out: np.ndarray) -> None:
         if self.gas_terms:
@@ -460,18 +474,14 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             back = 0.5 * h if self._active[0] else 0.0
             dust_values(pos, vel, species, mass, n + self._n_halo, self._inv_vol, True, self._shear_rate, back,
                         self._values, self._cols)
-            self._dep1[...] = 0.0
-            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, -1, 0)
+            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols)
             if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
                 explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._off, self._shear_rate, self._dep1,
                                      self.nspecies, self.species, self._source)
         # 3. gas predictor
         use_ext = self.feedback or bool(self.gas_terms)
-        if use_ext:
-            ext = self._ext
-            ext[...] = self._source if self.feedback else 0.0
-            self._gas_terms(u_old, t, ext)
-        gas.advance_stage(0, h, ext if use_ext else None)
+        ext = self._stage_source(u_old, t) if use_ext else None
+        gas.advance_stage(0, h, ext)
         u_half = gas.stage_input(1)
         t_half = t + 0.5 * h
         # 4. the trajectory field
@@ -490,30 +500,28 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
                               self._dep1, self.nspecies, self.species, self._frame_forces, self._mesh_field,
                               self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
                               mine[1])
-        self._fill_and_filter(self._traj, self._gt, t_half, rows)
+        traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
         self._budget[...] = 0.0  # the kick writes the rows of its chunks only: fewer than 64 with few particles
         self._vmax_work[...] = 0.0
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
-             self._traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
+             traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
              h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
         self.terms_impulse += self._budget.sum(axis=0)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
             self._kicked(n)
-            self._dep2[...] = 0.0
-            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, -1, 0)
-            self._fill_and_filter(self._dep2, self._g2, t_half, rows)
-            copy_domain(self._dep2, self._ghost_arrays[self._g2], self._source, 1.0)
+            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols)
+            dep2 = self._fill_and_filter(self._dep2, self._dep2_out, self._g2, t_half, rows)
+            copy_domain(dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True
         # 6. gas corrector
+        ext = None
         if use_ext:
-            ext = self._ext
-            ext[...] = self._source if self.feedback else 0.0
-            before = ext.sum(axis=(1, 2, 3)) if self.gas_terms else None
-            self._gas_terms(u_half, t_half, ext)
+            ext = self._stage_source(u_half, t_half)
             if self.gas_terms:
+                before = self._source.sum(axis=(1, 2, 3)) if self.feedback else 0.0
                 self.gas_terms_impulse += (ext.sum(axis=(1, 2, 3)) - before) * h * self.mesh.cell_volume
-        gas.advance_stage(1, h, ext if use_ext else None)
+        gas.advance_stage(1, h, ext)
         self._exchange(t + h)

@@ -7,10 +7,11 @@ a set-up's density and an analysis's clump masses are what the engine would depo
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from .boundaries import build_images, make_particle_boundaries
-from .deposit import image_values, pull_deposit, sort_images
+from .deposit import pull_deposit, sort_images
 from .interp import KERNEL_REACH, KERNELS
 from .store import ParticleStore, sort_by_cell
 
@@ -54,10 +55,7 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     sort_images(m, lay, reach, i_, img_src, img_cell, img_w, img_dvy, row_start)
     values = (m_[:n] / mesh.cell_volume).reshape(n, 1).copy()
     cols = np.zeros(n, dtype=np.int64)
-    img_val = np.zeros((max(m, 1), 1))
-    img_col = np.zeros(max(m, 1), dtype=np.int64)
-    image_values(m, img_src, img_dvy, values, -1, 0, img_val, cols, img_col)
     out = np.zeros((nz, ny, nx, 1))
     pull_deposit(out, np.zeros(3, dtype=np.int64), lay, reach, R, cell_start, keys, wts, values, cols, row_start,
-                 img_cell, img_w, img_val, img_col)
+                 img_cell, img_w, img_src, numba.get_num_threads())
     return out[..., 0]

@@ -12,8 +12,9 @@ particle id; :mod:`dustygas.particles.store`), the image records beyond the face
 (:func:`~dustygas.particles.boundaries.build_images`) taking their place in that order. No two
 threads write the same cell, and a cell's sum is the same whatever the number of threads and
 whatever the split of the box into blocks (a neighbour's particles would be image records in
-the same places). Rows are handed to threads with the z index varying fastest, so the work of
-a thin dust layer at the midplane is split along y.
+the same places). Rows are handed to threads in chunks with the z index varying fastest, so the
+work of a thin dust layer at the midplane is split along y; a chunk walks the source rows that
+reach its rows once, each record adding to all of them (:func:`pull_deposit`).
 
 The grid-scale filter ``F = 1 - δ⁴/16`` (:func:`filter_field`) acts on padded fields, so that
 the particles gather and deposit through the kernel ``F * W``.
@@ -24,9 +25,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-__all__ = ["sort_images", "image_values", "pull_deposit", "filter_field", "ROW_CHUNKS"]
+__all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
 
-#: rows are split into this many chunks for the threads (more than threads: a balanced split)
+#: the filter's planes are split into this many chunks for the threads (more than threads: a balanced split)
 ROW_CHUNKS = 64
 #: the length of the pieces of a row (elements) that the z pass of :func:`filter_field` hands to threads
 FILTER_PIECE = 64
@@ -86,48 +87,37 @@ def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row
                 img_w[m, a, s] = w[o, a, s]
 
 
-@njit(cache=True, error_model="numpy")
-def image_values(m_total, img_src, img_dvy, values, vy_col, mass_col, out, col, img_col) -> None:
-    """``out[m] = values[img_src[m]]``, plus ``img_dvy[m] values[., mass_col]`` in column ``vy_col``
-    (the azimuthal momentum of a shear-periodic image; ``vy_col < 0``: none), and the column of
-    the source particle ``img_col[m] = col[img_src[m]]``."""
-    nv = values.shape[1]
-    for m in range(m_total):
-        p = img_src[m]
-        img_col[m] = col[p]
-        for c in range(nv):
-            out[m, c] = values[p, c]
-        if vy_col >= 0:
-            out[m, vy_col] += img_dvy[m] * values[p, mass_col]
-
-
 @njit(cache=True, error_model="numpy", inline="always")
-def _add_record(acc, I, wts, r, wyz, rx, R, nx, vals, col, nv):
-    """Record ``r`` (weights ``wts[r]``, values ``vals[r]``) into the row ``acc`` from cell ``I``."""
+def _add_record(out2, row, base, I, w_r, wyz, rx, R, nx, vals_r, nv, nvo):
+    """A record (weights ``w_r`` (3, W), values ``vals_r`` (nv,)) from cell ``I`` into row ``row``
+    of the flattened target ``out2`` ``(NZ NY, NX nvo)``, at element ``base + i nvo`` of cell ``i``
+    (``base``: the x ghosts and the record's first column)."""
     for di in range(-rx, rx + 1):
         i = I + di
         if 0 <= i < nx:
-            w = wyz * wts[r, 0, R + di]
+            w = wyz * w_r[0, R + di]
             if w != 0.0:
+                o = base + i * nvo
                 if nv == 4:  # the deposits of the drag problem (4) and of the back-reaction (3), unrolled
-                    acc[i, col] += w * vals[r, 0]
-                    acc[i, col + 1] += w * vals[r, 1]
-                    acc[i, col + 2] += w * vals[r, 2]
-                    acc[i, col + 3] += w * vals[r, 3]
+                    out2[row, o] += w * vals_r[0]
+                    out2[row, o + 1] += w * vals_r[1]
+                    out2[row, o + 2] += w * vals_r[2]
+                    out2[row, o + 3] += w * vals_r[3]
                 elif nv == 3:
-                    acc[i, col] += w * vals[r, 0]
-                    acc[i, col + 1] += w * vals[r, 1]
-                    acc[i, col + 2] += w * vals[r, 2]
+                    out2[row, o] += w * vals_r[0]
+                    out2[row, o + 1] += w * vals_r[1]
+                    out2[row, o + 2] += w * vals_r[2]
                 else:
                     for c in range(nv):
-                        acc[i, col + c] += w * vals[r, c]
+                        out2[row, o + c] += w * vals_r[c]
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_val,
-                 img_col) -> None:
+def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_src,
+                 nchunk, clear=False) -> None:
     """Add to the domain cells of ``out`` ``(NZ, NY, NX, nv_out)`` (``g = (gx, gy, gz)`` ghost layers,
-    which are left alone) the deposit of the sorted particles and their image records (module docstring).
+    which are left alone) the deposit of the sorted particles and their image records (module
+    docstring); with ``clear``, set them to the deposit (zeroed first).
 
     Parameters
     ----------
@@ -138,46 +128,86 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
         The particles' canonical order, cells and weights ``(N, 3, 2R + 1)``.
     values, col
         ``(N, nv)`` what each particle deposits, into columns ``col[p] .. col[p] + nv - 1``.
-    img_row_start, img_cell, img_w, img_val, img_col
-        The image records, sorted by :func:`sort_images`, with their values and columns.
+    img_row_start, img_cell, img_w, img_src
+        The image records, sorted by :func:`sort_images`; a record deposits the values of its
+        source particle ``img_src[m]`` into that particle's columns.
+    nchunk
+        Chunks of the domain rows ``(k, j)`` (``r = j nz + k``: z fastest, so that the chunks of a thin
+        dust layer split it along y) handed to the threads; any number gives the same sums.
+
+    A chunk owns its rows and walks the source rows ``(K, J)`` that reach them in ascending
+    order, each record adding to every row of the chunk within its reach: a row receives its
+    source rows in the order of the offsets ``(dk, dj)``, and the records of one source row in
+    canonical order, whatever the chunks (the weights and values of a record are read once for
+    the up to ``(2R_z + 1)(2R_y + 1)`` rows it reaches, not once per row).
     """
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     rx, ry, rz = reach[0], reach[1], reach[2]
     gx, gy, gz = g[0], g[1], g[2]
+    NZ, NY, NX, nvo = out.shape
+    out2 = out.reshape((NZ * NY, NX * nvo))
     nyr = ny + 2 * ry
     nv = values.shape[1]
     nrows = ny * nz
-    nchunk = min(nrows, ROW_CHUNKS)
+    ntmax = (2 * rz + 1) * (2 * ry + 1)
+    base = gx * nvo
     for chunk in prange(nchunk):
-        for r in range(chunk * nrows // nchunk, (chunk + 1) * nrows // nchunk):
-            k = r % nz  # z fastest: a thread's rows span the layer, it splits along y
-            j = r // nz
-            acc = out[k + gz, j + gy, gx:gx + nx]
-            for dk in range(-rz, rz + 1):
-                K = k + dk
-                sz = R - dk
-                for dj in range(-ry, ry + 1):
-                    J = j + dj
-                    sy = R - dj
-                    prow = (K + rz) * nyr + J + ry
-                    m = img_row_start[prow]
-                    mend = img_row_start[prow + 1]
-                    while m < mend and img_cell[m, 0] < 0:  # images beyond the lower x face first
-                        wyz = img_w[m, 1, sy] * img_w[m, 2, sz]
+        r0 = chunk * nrows // nchunk
+        r1 = (chunk + 1) * nrows // nchunk
+        if r1 <= r0:
+            continue
+        j0, j1 = r0 // nz, (r1 - 1) // nz
+        k0, k1 = (r0 % nz, (r1 - 1) % nz) if j0 == j1 else (0, nz - 1)
+        if clear:
+            for r in range(r0, r1):
+                row = out2[(r % nz + gz) * NY + r // nz + gy]
+                for q in range(nx * nvo):
+                    row[base + q] = 0.0
+        t_row = np.empty(ntmax, dtype=np.int64)  # the chunk's rows a source row reaches
+        t_sy = np.empty(ntmax, dtype=np.int64)  # and the weight slots there
+        t_sz = np.empty(ntmax, dtype=np.int64)
+        for K in range(k0 - rz, k1 + rz + 1):
+            for J in range(j0 - ry, j1 + ry + 1):
+                nt = 0
+                for dk in range(-rz, rz + 1):
+                    k = K - dk
+                    for dj in range(-ry, ry + 1):
+                        j = J - dj
+                        r = j * nz + k
+                        if 0 <= k < nz and 0 <= j < ny and r0 <= r < r1:
+                            t_row[nt] = (k + gz) * NY + j + gy
+                            t_sy[nt] = R - dj
+                            t_sz[nt] = R - dk
+                            nt += 1
+                if nt == 0:
+                    continue
+                prow = (K + rz) * nyr + J + ry
+                m = img_row_start[prow]
+                mend = img_row_start[prow + 1]
+                while m < mend and img_cell[m, 0] < 0:  # images beyond the lower x face first
+                    src = img_src[m]
+                    for t in range(nt):
+                        wyz = img_w[m, 1, t_sy[t]] * img_w[m, 2, t_sz[t]]
                         if wyz != 0.0:
-                            _add_record(acc, img_cell[m, 0], img_w, m, wyz, rx, R, nx, img_val, img_col[m], nv)
-                        m += 1
-                    if 0 <= J < ny and 0 <= K < nz:
-                        c0 = (K * ny + J) * nx
-                        for p in range(cell_start[c0], cell_start[c0 + nx]):
-                            wyz = wts[p, 1, sy] * wts[p, 2, sz]
+                            _add_record(out2, t_row[t], base + col[src], img_cell[m, 0], img_w[m], wyz, rx, R, nx,
+                                        values[src], nv, nvo)
+                    m += 1
+                if 0 <= J < ny and 0 <= K < nz:
+                    c0 = (K * ny + J) * nx
+                    for p in range(cell_start[c0], cell_start[c0 + nx]):
+                        for t in range(nt):
+                            wyz = wts[p, 1, t_sy[t]] * wts[p, 2, t_sz[t]]
                             if wyz != 0.0:
-                                _add_record(acc, keys[p] - c0, wts, p, wyz, rx, R, nx, values, col[p], nv)
-                    while m < mend:
-                        wyz = img_w[m, 1, sy] * img_w[m, 2, sz]
+                                _add_record(out2, t_row[t], base + col[p], keys[p] - c0, wts[p], wyz, rx, R, nx,
+                                            values[p], nv, nvo)
+                while m < mend:
+                    src = img_src[m]
+                    for t in range(nt):
+                        wyz = img_w[m, 1, t_sy[t]] * img_w[m, 2, t_sz[t]]
                         if wyz != 0.0:
-                            _add_record(acc, img_cell[m, 0], img_w, m, wyz, rx, R, nx, img_val, img_col[m], nv)
-                        m += 1
+                            _add_record(out2, t_row[t], base + col[src], img_cell[m, 0], img_w[m], wyz, rx, R, nx,
+                                        values[src], nv, nvo)
+                    m += 1
 
 
 @njit(cache=True, error_model="numpy")
@@ -193,8 +223,9 @@ def _filter_x(row, buf, nv):
     """:func:`filter_field` along x of one flattened row ``(NX nv)`` in place (``buf`` its length)."""
     n = row.shape[0]
     buf[:] = row
-    for q in range(2 * nv, n - 2 * nv):
-        row[q] = 0.0625 * (10.0 * buf[q] + 4.0 * (buf[q - nv] + buf[q + nv]) - (buf[q - 2 * nv] + buf[q + 2 * nv]))
+    # views at the five offsets, indexed from 0: an index `q - nv` would cost a negative-index
+    # check per load and keep the loop from being vectorised (several times slower)
+    _filter_into(row[2 * nv:], buf, buf[nv:], buf[2 * nv:], buf[3 * nv:], buf[4 * nv:], 0, n - 4 * nv)
 
 
 @njit(cache=True, error_model="numpy")
@@ -261,3 +292,57 @@ def filter_field(f, active, k_lo, k_hi) -> None:
                 q1 = (c % nq + 1) * L // nq
                 ring = np.empty((3, q1 - q0))
                 _filter_across(f3, 2, j, lo, hi, q0, q1, ring)
+
+
+@njit(cache=True, error_model="numpy")
+def _copy_into(src, dst, n):
+    """``dst[0 .. n-1] = src[0 .. n-1]``."""
+    for q in range(n):
+        dst[q] = src[q]
+
+
+@njit(cache=True, error_model="numpy")
+def _filter_x_piece(a, x, q0, width, nv):
+    """Elements ``q0 .. q0 + width - 1`` of the row ``a`` ``(NX nv)`` filtered along x into
+    ``x[0 .. width-1]`` (as :func:`_filter_x`: the two outermost cells of either end copied)."""
+    n = a.shape[0]
+    e = 2 * nv
+    lo = min(max(e - q0, 0), width)  # x[lo .. hi-1] are filtered
+    hi = max(min(n - e - q0, width), lo)
+    _copy_into(a[q0:], x, lo)
+    b = q0 + lo
+    _filter_into(x[lo:], a[b - e:], a[b - nv:], a[b:], a[b + nv:], a[b + e:], 0, hi - lo)
+    _copy_into(a[q0 + hi:], x[hi:], width - hi)
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def filter_field_xz(f, out, k_lo, k_hi, npiece) -> None:
+    """:func:`filter_field` of a 2D x-z field ``f`` ``(NZ, 1, NX, nv)`` (x and z active), out of
+    place: ``out`` (the same shape) receives exactly what :func:`filter_field` would leave in ``f``,
+    which keeps its values. One parallel region over ``npiece`` pieces of the (x, value) rows
+    (any number: every element is the same expression of the same inputs): each piece filters
+    its columns along x into a scratch of the rows ``k_lo .. k_hi-1`` and then along z into
+    ``out``; rows outside ``k_lo .. k_hi-1`` are copied.
+    """
+    NZ, NY, NX, nv = f.shape
+    L = NX * nv
+    a2 = f.reshape((NZ, L))
+    b2 = out.reshape((NZ, L))
+    lo, hi = max(k_lo + 2, 2), min(k_hi - 2, NZ - 2)
+    nk = max(k_hi - k_lo, 0)
+    for c in prange(npiece):
+        q0 = c * L // npiece
+        q1 = (c + 1) * L // npiece
+        width = q1 - q0
+        xf = np.empty((nk, width))  # the rows filtered along x
+        for k in range(k_lo, k_hi):
+            _filter_x_piece(a2[k], xf[k - k_lo], q0, width, nv)
+        for k in range(NZ):
+            b = b2[k, q0:q1]
+            if k < k_lo or k >= k_hi:
+                _copy_into(a2[k, q0:q1], b, width)
+            elif k < lo or k >= hi:
+                _copy_into(xf[k - k_lo], b, width)
+            else:
+                r = k - k_lo
+                _filter_into(b, xf[r - 2], xf[r - 1], xf[r], xf[r + 1], xf[r + 2], 0, width)

@@ -52,7 +52,7 @@ class CoupledOutputs:
         pos, vel, species, pid, mass = p.buffers()
         dust_values(pos, vel, species, mass, p.n, self._inv_vol, False, 0.0, 0.0, self._values, self._cols)
         self._rho_p[...] = 0.0
-        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._zero_cols, -1, 0)
+        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._zero_cols)
         return self._rho_p[..., 0].copy()
 
     # ------------------------------------------------------------------ outputs
@@ -64,7 +64,7 @@ class CoupledOutputs:
         pos, vel, species, pid, mass = p.buffers()
         dust_values(pos, vel, species, mass, p.n, self._inv_vol, False, 0.0, 0.0, self._values, self._cols)
         self._rho_p[...] = 0.0
-        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._cols, -1, 0)
+        self._deposit(self._rho_p, (0, 0, 0), self._values[:, :1], self._cols)
         rho = np.moveaxis(self._rho_p, -1, 0).copy()
         return rho if per_species else rho.sum(axis=0)
 

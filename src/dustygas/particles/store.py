@@ -175,6 +175,15 @@ def _out_of_order(keys, pid, p):
     return keys[p] < keys[p - 1] or (keys[p] == keys[p - 1] and pid[p] < pid[p - 1])
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _cell_key(pos, p, sp, ix, iy, iz, off, nx, ny, nz):
+    """The flat index ``(k ny + j) nx + i`` of the domain cell of particle ``p``."""
+    i = axis_cell(pos[0, p], sp.x0, ix, off.i0, nx)
+    j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
+    k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
+    return (k * ny + j) * nx + i
+
+
 @njit(cache=True, parallel=True, error_model="numpy")
 def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork,
                  kernel, R, wts) -> int:
@@ -189,11 +198,11 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
     ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
     ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
-    pass, one copy-back pass that also weighs the particles; when the order holds, as at most steps
-    in 2D, a pass of its own). When the order holds, ``cell_start`` is read off the sorted keys in
-    that pass; otherwise the histogram and its prefix sum are serial (``O(N + ncell)``). Computing
-    the keys and checking the order, the weights, permuting the arrays and ordering each cell by
-    ``pid`` run in parallel.
+    pass, one copy-back pass that also weighs the particles). The first pass computes the keys,
+    checks the order and, as if it held (as at most steps in 2D), weighs the particles and reads
+    ``cell_start`` off the keys: then it is the only one. Otherwise the histogram and its prefix
+    sum are serial (``O(N + ncell)``); computing the keys and checking the order, permuting the
+    arrays, ordering each cell by ``pid`` and weighing run in parallel.
     """
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     ncell = nx * ny * nz
@@ -201,8 +210,13 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     nchunk = min(max(n, 1), 64)
     first_bad = np.full(nchunk, -1, dtype=np.int64)
     unordered = np.zeros(nchunk, dtype=np.int64)  # per chunk: a particle out of canonical order
+    # one pass: keys, the order within the chunk, the weights and cell_start as if the order
+    # held (as at most steps: few particles change cells); both are redone below if it does not
     for c in prange(nchunk):
         p0, p1 = c * n // nchunk, (c + 1) * n // nchunk
+        prev = 0  # the key of particle p0 - 1 (computed here too: another chunk writes it)
+        if p0 > 0 and np.isfinite(pos[0, p0 - 1]) and np.isfinite(pos[1, p0 - 1]) and np.isfinite(pos[2, p0 - 1]):
+            prev = _cell_key(pos, p0 - 1, sp, ix, iy, iz, off, nx, ny, nz)
         for p in range(p0, p1):
             ok = True
             for a in range(3):
@@ -213,30 +227,26 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
                     first_bad[c] = p
                 keys[p] = 0
                 continue
-            i = axis_cell(pos[0, p], sp.x0, ix, off.i0, nx)
-            j = axis_cell(pos[1, p], sp.y0, iy, off.j0, ny)
-            k = axis_cell(pos[2, p], sp.z0, iz, off.k0, nz)
-            keys[p] = (k * ny + j) * nx + i
+            key = _cell_key(pos, p, sp, ix, iy, iz, off, nx, ny, nz)
+            keys[p] = key
+            for cell in range(prev + 1 if p > 0 else 0, key + 1):
+                cell_start[cell] = p
+            prev = key
+            stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
+            stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
+            stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
         for p in range(p0 + 1, p1):  # the pairs (p - 1, p) inside the chunk
             if _out_of_order(keys, pid, p):
                 unordered[c] = 1
                 break
-    ordered = True  # already canonical (most steps: few particles change cells)
+    ordered = True
     for c in range(nchunk):
         if first_bad[c] >= 0:
             return first_bad[c]
         p = c * n // nchunk  # and the pair across the chunk boundary
         if unordered[c] or (0 < p < n and _out_of_order(keys, pid, p)):
             ordered = False
-    if ordered:  # cell_start from the sorted keys, and the weights, in parallel
-        for c in prange(nchunk):
-            p0, p1 = c * n // nchunk, (c + 1) * n // nchunk
-            for p in range(p0, p1):
-                for cell in range(keys[p - 1] + 1 if p > 0 else 0, keys[p] + 1):
-                    cell_start[cell] = p
-                stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
-                stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
-                stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
+    if ordered:
         for cell in range(keys[n - 1] + 1 if n > 0 else 0, ncell + 1):
             cell_start[cell] = n
         return -1
