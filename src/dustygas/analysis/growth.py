@@ -26,9 +26,9 @@ values alongside.
 Modal projection (:func:`measure_modal_growth`)
 -----------------------------------------------
 Where two eigenvectors of the operator at the run's wave vector are nearly parallel, a
-per-field fit is a poor estimator: at τ_s = 0.001 (thesis Fig 4.6, μ = 0.1, |K| = 59.7) the
+per-field fit is a poor estimator: at τ_s = 0.001 (thesis Fig 4.6, μ = 0.1, ``|K|`` = 59.7) the
 growing mode and its decaying partner (ω = 0.9769 ± 0.124i) have eigenvectors at
-|cos| = 0.95 (condition number of the eigenbasis 3.3e3), so a 1-2 % admixture of the partner,
+``|cos|`` = 0.95 (condition number of the eigenbasis 3.3e3), so a 1-2 % admixture of the partner,
 which any discrete initial state carries, moves the eight fields' fitted rates apart by ±7 %
 while the growing mode itself grows at the theory's rate. The modal fit solves, at every
 history row, ``X(t) = Σ_j c_j(t) e_j`` for the amplitudes ``c_j`` of all eigenvectors ``e_j`` of the
