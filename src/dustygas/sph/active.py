@@ -58,7 +58,7 @@ def active_densities(act, pos, mass, h_guess, h_search, same_start, same_index, 
         for i in range(i0, i1):
             a = act[i]
             h_out[i], rho_out[i], omega_out[i], status[i], iterations[i] = solve_one_smoothing_length(
-                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index[same_start[i]:],
+                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index, same_start[i],
                 same_count[i], pos, mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
 
 
@@ -106,15 +106,15 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
             for c in range(9):
                 grad[i, c] = 0.0
             continue
-        pa = packed[a]
-        xa, ya, za = pa[_X], pa[_Y], pa[_Z]
-        vxa, vya, vza = pa[_VX], pa[_VY], pa[_VZ]
+        xa, ya, za = packed[a, _X], packed[a, _Y], packed[a, _Z]
+        vxa, vya, vza = packed[a, _VX], packed[a, _VY], packed[a, _VZ]
         wrap = periodic[0] or periodic[1] or periodic[2]
-        hinv_a = pa[_HINV]
-        gnorm_a = pa[_GRADNORM]
-        cs_a = pa[_CS]
-        alpha_a = pa[_ALPHA]
-        ombar_a = pa[_OMBAR]
+        hinv_a = packed[a, _HINV]
+        gnorm_a = packed[a, _GRADNORM]
+        cs_a = packed[a, _CS]
+        alpha_a = packed[a, _ALPHA]
+        ombar_a = packed[a, _OMBAR]
+        form_a, P_a, rhoinv_a = packed[a, _FORM], packed[a, _P], packed[a, _RHOINV]
         vs = cs_a
         g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
         for k in range(same_count[i]):
@@ -139,7 +139,7 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
             dvy = vya - packed[b, _VY]
             dvz = vza - packed[b, _VZ]
             vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
-            s, _ = pressure_pair(form, pa[_FORM], packed[b, _FORM], dW_a, dW_b, pa[_P], packed[b, _P], pa[_RHOINV],
+            s, _ = pressure_pair(form, form_a, packed[b, _FORM], dW_a, dW_b, P_a, packed[b, _P], rhoinv_a,
                                  packed[b, _RHOINV], vdotr)
             qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
                                   packed[b, _OMBAR])

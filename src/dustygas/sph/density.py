@@ -52,14 +52,16 @@ def solve_smoothing_lengths(pos, mass, h, index, count, h_search, shape, norm, r
     for ``h_search`` (every neighbour with :math:`r < R h^{\\rm search}_a`).
     """
     n = pos.shape[0]
+    cap = index.shape[1]
+    flat = index.reshape(n * cap)  # rows read at offsets: no row view (and no reference count) per particle
     nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
     for c in prange(nchunk):
         a0, a1 = c * DENSITY_CHUNK, min(n, (c + 1) * DENSITY_CHUNK)
         r, m = row_buffers(count, a0, a1)
         for a in range(a0, a1):
             h[a], rho[a], omega[a], status[a], iterations[a] = solve_one_smoothing_length(
-                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], index[a], count[a], pos, mass, shape,
-                norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
+                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], flat, a * cap, count[a], pos, mass,
+                shape, norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
 
 
 @njit(inline="always")
@@ -73,10 +75,12 @@ def row_buffers(count, a0, a1):
 
 
 @njit(inline="always")
-def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, pos, mass, shape, norm, ndim, hfact,
-                               length, periodic, tol, maxiter, r, m):
+def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, index, start, n_row, pos, mass, shape, norm, ndim,
+                               hfact, length, periodic, tol, maxiter, r, m):
     """Newton-Raphson with bisection fallback for one particle at ``(xa, ya, za)`` of mass ``ma``
-    whose neighbours are ``pos[row[:n_row]]`` (complete within :math:`R h_{\\rm search}`).
+    whose neighbours are ``pos[index[start:start + n_row]]`` (complete within :math:`R h_{\\rm search}`;
+    ``index`` one-dimensional, read in place: a row view per particle would count references to the
+    shared table atomically, a cache line that two threads then fight over).
 
     ``r``, ``m``: scratch arrays of at least ``n_row`` entries (:func:`row_buffers`). Returns
     ``(h, rho, omega, status, iterations)`` (module docstring); shared by
@@ -93,7 +97,7 @@ def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, po
     it = 0
     # the distances and masses of the row, gathered once for every iteration
     for k in range(n_row):
-        b = row[k]
+        b = index[start + k]
         dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
         dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
         dz = minimum_image(za - pos[b, 2], length[2], periodic[2])

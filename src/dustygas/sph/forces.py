@@ -30,7 +30,9 @@ bitwise-antisymmetric separations, so total momentum is conserved to round-off a
 :math:`\\sum_a m_a (v_a^2/2 + u_a)` is conserved exactly by the semi-discrete equations.
 
 Each particle gathers from its own neighbour row (no scatter, no atomics): the loop is parallel
-over particles and deterministic. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|`
+over particles and deterministic. The neighbours' columns of the packed table are read in place
+(``packed[b, _X]``): a row view ``packed[b]`` per pair makes numba count references to the table
+with an atomic add and subtract on one cache line that both threads then fight over. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|`
 (Price 2012 eqs. 84-85, used by the viscosity switches and to predict :math:`h`) and the largest pair
 signal speed (Courant condition, :meth:`dustygas.sph.SPHEngine.timestep`). A new pairwise term (e.g. dust
 drag) is one more block inside the loop of :func:`hydro_forces` or a second loop of the same
@@ -122,19 +124,18 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
     r2max = radius * radius
     conduct = evolve_u and alpha_u > 0.0
     for a in prange(n):
-        pa = packed[a]
-        xa, ya, za = pa[_X], pa[_Y], pa[_Z]
-        vxa, vya, vza = pa[_VX], pa[_VY], pa[_VZ]
-        hinv_a = pa[_HINV]
-        gnorm_a = pa[_GRADNORM]
-        P_a = pa[_P]
-        rhoinv_a = pa[_RHOINV]
-        ombar_a = pa[_OMBAR]
-        form_a = pa[_FORM]
-        cs_a = pa[_CS]
-        alpha_a = pa[_ALPHA]
-        u_a = pa[_U]
-        rho_a = pa[_RHO]
+        xa, ya, za = packed[a, _X], packed[a, _Y], packed[a, _Z]
+        vxa, vya, vza = packed[a, _VX], packed[a, _VY], packed[a, _VZ]
+        hinv_a = packed[a, _HINV]
+        gnorm_a = packed[a, _GRADNORM]
+        P_a = packed[a, _P]
+        rhoinv_a = packed[a, _RHOINV]
+        ombar_a = packed[a, _OMBAR]
+        form_a = packed[a, _FORM]
+        cs_a = packed[a, _CS]
+        alpha_a = packed[a, _ALPHA]
+        u_a = packed[a, _U]
+        rho_a = packed[a, _RHO]
         ax = 0.0
         ay = 0.0
         az = 0.0
@@ -146,12 +147,11 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
         vs = cs_a
         for k in range(count[a]):
             b = index[a, k]
-            pb = packed[b]
-            dx = minimum_image(xa - pb[_X], length[0], periodic[0])
-            dy = minimum_image(ya - pb[_Y], length[1], periodic[1])
-            dz = minimum_image(za - pb[_Z], length[2], periodic[2])
+            dx = minimum_image(xa - packed[b, _X], length[0], periodic[0])
+            dy = minimum_image(ya - packed[b, _Y], length[1], periodic[1])
+            dz = minimum_image(za - packed[b, _Z], length[2], periodic[2])
             r2 = dx * dx + dy * dy + dz * dz
-            hinv_b = pb[_HINV]
+            hinv_b = packed[b, _HINV]
             qa2 = r2 * hinv_a * hinv_a
             qb2 = r2 * hinv_b * hinv_b
             if qa2 >= r2max and qb2 >= r2max:
@@ -160,23 +160,26 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
             rinv = 1.0 / r
             # kernel shapes vanish beyond the support: no branch on q needed
             dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
-            dW_b = pb[_GRADNORM] * kernel_dshape(shape, r * hinv_b)
-            m_b = pb[_M]
-            dvx = vxa - pb[_VX]
-            dvy = vya - pb[_VY]
-            dvz = vza - pb[_VZ]
+            dW_b = packed[b, _GRADNORM] * kernel_dshape(shape, r * hinv_b)
+            m_b = packed[b, _M]
+            dvx = vxa - packed[b, _VX]
+            dvy = vya - packed[b, _VY]
+            dvz = vza - packed[b, _VZ]
             vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
             # pressure
-            s, du_a = pressure_pair(form, form_a, pb[_FORM], dW_a, dW_b, P_a, pb[_P], rhoinv_a, pb[_RHOINV], vdotr)
+            s, du_a = pressure_pair(form, form_a, packed[b, _FORM], dW_a, dW_b, P_a, packed[b, _P], rhoinv_a,
+                                    packed[b, _RHOINV], vdotr)
             du += du_a * m_b
             # artificial viscosity (zero for receding pairs)
-            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, pb[_ALPHA], pb[_CS], beta, ombar_a, pb[_OMBAR])
+            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
+                                  packed[b, _OMBAR])
             s += qa * dW_a + qb * dW_b
             du += qa * dW_a * vdotr * m_b
             # artificial conductivity
             if conduct:
-                vsu = conductivity_signal(P_a, pb[_P], rho_a, pb[_RHO])
-                du += m_b * alpha_u * vsu * (u_a - pb[_U]) * 0.5 * (ombar_a * dW_a + pb[_OMBAR] * dW_b)
+                vsu = conductivity_signal(P_a, packed[b, _P], rho_a, packed[b, _RHO])
+                du += m_b * alpha_u * vsu * (u_a - packed[b, _U]) * 0.5 * (ombar_a * dW_a
+                                                                           + packed[b, _OMBAR] * dW_b)
             s *= m_b * rinv
             ax -= s * dx
             ay -= s * dy
@@ -186,7 +189,7 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
             cx += w * (dvy * dz - dvz * dy)
             cy += w * (dvz * dx - dvx * dz)
             cz += w * (dvx * dy - dvy * dx)
-            v = signal_speed(cs_a, pb[_CS], vdotr, beta)
+            v = signal_speed(cs_a, packed[b, _CS], vdotr, beta)
             vs = max(vs, v)
         acc[a, 0] = ax
         acc[a, 1] = ay
