@@ -55,6 +55,7 @@ from numba import njit, prange
 
 from ..kernels import kernel_dshape, kernel_shape
 from ..neighbours import minimum_image
+from ..workshare import CHUNK, WORKERS, next_chunk
 
 __all__ = ["pack", "velocity_gradient", "drag_pass", "drag_pair", "mc_limiter", "KERNEL_AVERAGE", "KERNEL_OWN",
            "KERNEL_OTHER"]
@@ -71,40 +72,47 @@ def pack(*columns) -> np.ndarray:
 def velocity_gradient(packed, h, rho, omega, index, count, shape, norm, ndim, length, periodic, grad):
     """:math:`(\\nabla\\mathbf v_a)_{kj} = \\partial_j v_k = -\\frac{1}{\\Omega_a\\rho_a}\\sum_b m_b (v_a - v_b)_k\\,\\partial_j W_{ab}(h_a)`,
     stored row-major in ``grad[a, 3 k + j]``; ``packed`` rows are ``(x, y, z, vx, vy, vz, m)`` (:func:`pack`)."""
-    for a in prange(packed.shape[0]):
-        hinv = 1.0 / h[a]
-        xa, ya, za = packed[a, 0], packed[a, 1], packed[a, 2]
-        vxa, vya, vza = packed[a, 3], packed[a, 4], packed[a, 5]
-        g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
-        for kk in range(count[a]):
-            b = index[a, kk]  # the neighbour's columns read in place (module docstring)
-            dx = minimum_image(xa - packed[b, 0], length[0], periodic[0])
-            dy = minimum_image(ya - packed[b, 1], length[1], periodic[1])
-            dz = minimum_image(za - packed[b, 2], length[2], periodic[2])
-            r = math.sqrt(dx * dx + dy * dy + dz * dz)
-            f = packed[b, 6] * kernel_dshape(shape, r * hinv) / r
-            ux = (vxa - packed[b, 3]) * f
-            uy = (vya - packed[b, 4]) * f
-            uz = (vza - packed[b, 5]) * f
-            g0 += ux * dx
-            g1 += ux * dy
-            g2 += ux * dz
-            g3 += uy * dx
-            g4 += uy * dy
-            g5 += uy * dz
-            g6 += uz * dx
-            g7 += uz * dy
-            g8 += uz * dz
-        c = -norm * hinv ** (ndim + 1) / (omega[a] * rho[a])
-        grad[a, 0] = c * g0
-        grad[a, 1] = c * g1
-        grad[a, 2] = c * g2
-        grad[a, 3] = c * g3
-        grad[a, 4] = c * g4
-        grad[a, 5] = c * g5
-        grad[a, 6] = c * g6
-        grad[a, 7] = c * g7
-        grad[a, 8] = c * g8
+    _nwork = packed.shape[0]
+    _nchunk = (_nwork + CHUNK - 1) // CHUNK
+    _counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        _chunk = next_chunk(_counter)
+        while _chunk < _nchunk:
+            for a in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+                hinv = 1.0 / h[a]
+                xa, ya, za = packed[a, 0], packed[a, 1], packed[a, 2]
+                vxa, vya, vza = packed[a, 3], packed[a, 4], packed[a, 5]
+                g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
+                for kk in range(count[a]):
+                    b = index[a, kk]  # the neighbour's columns read in place (module docstring)
+                    dx = minimum_image(xa - packed[b, 0], length[0], periodic[0])
+                    dy = minimum_image(ya - packed[b, 1], length[1], periodic[1])
+                    dz = minimum_image(za - packed[b, 2], length[2], periodic[2])
+                    r = math.sqrt(dx * dx + dy * dy + dz * dz)
+                    f = packed[b, 6] * kernel_dshape(shape, r * hinv) / r
+                    ux = (vxa - packed[b, 3]) * f
+                    uy = (vya - packed[b, 4]) * f
+                    uz = (vza - packed[b, 5]) * f
+                    g0 += ux * dx
+                    g1 += ux * dy
+                    g2 += ux * dz
+                    g3 += uy * dx
+                    g4 += uy * dy
+                    g5 += uy * dz
+                    g6 += uz * dx
+                    g7 += uz * dy
+                    g8 += uz * dz
+                c = -norm * hinv ** (ndim + 1) / (omega[a] * rho[a])
+                grad[a, 0] = c * g0
+                grad[a, 1] = c * g1
+                grad[a, 2] = c * g2
+                grad[a, 3] = c * g3
+                grad[a, 4] = c * g4
+                grad[a, 5] = c * g5
+                grad[a, 6] = c * g6
+                grad[a, 7] = c * g7
+                grad[a, 8] = c * g8
+            _chunk = next_chunk(_counter)
 
 
 @njit(cache=True)
@@ -158,29 +166,36 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
     gas, 2: the other one) replaces the midpoint reconstruction by the gas velocity extrapolated to the
     dust particle with the gas's own gradient, :math:`w^* = w - \\sigma_{\\rm gas}`.
     """
-    for a in prange(table.shape[0]):
-        ax = 0.0
-        ay = 0.0
-        az = 0.0
-        du = 0.0
-        tm = math.inf
-        for kk in range(count[a]):
-            j = index[a, kk]
-            fx, fy, fz, dq, tpair = drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic,
-                                              c_const, projected, recon, limit, dt_implicit, heat, kernel_side,
-                                              gas_slope)
-            if tpair == math.inf:
-                continue
-            tm = min(tm, tpair)
-            ax += fx
-            ay += fy
-            az += fz
-            du += dq
-        acc[a, 0] = ax
-        acc[a, 1] = ay
-        acc[a, 2] = az
-        dudt[a] = du
-        tmin[a] = tm
+    _nwork = table.shape[0]
+    _nchunk = (_nwork + CHUNK - 1) // CHUNK
+    _counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        _chunk = next_chunk(_counter)
+        while _chunk < _nchunk:
+            for a in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+                ax = 0.0
+                ay = 0.0
+                az = 0.0
+                du = 0.0
+                tm = math.inf
+                for kk in range(count[a]):
+                    j = index[a, kk]
+                    fx, fy, fz, dq, tpair = drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic,
+                                                      c_const, projected, recon, limit, dt_implicit, heat, kernel_side,
+                                                      gas_slope)
+                    if tpair == math.inf:
+                        continue
+                    tm = min(tm, tpair)
+                    ax += fx
+                    ay += fy
+                    az += fz
+                    du += dq
+                acc[a, 0] = ax
+                acc[a, 1] = ay
+                acc[a, 2] = az
+                dudt[a] = du
+                tmin[a] = tm
+            _chunk = next_chunk(_counter)
 
 
 @njit(inline="always")
