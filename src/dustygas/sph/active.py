@@ -98,13 +98,13 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
     reconstruction is their only reader).
     """
     r2max = radius * radius
-    _nwork = act.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for i in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 a = act[i]
                 ax = ay = az = 0.0
                 div = cx = cy = cz = 0.0
@@ -186,7 +186,7 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
                 grad[i, 0], grad[i, 1], grad[i, 2] = -ombar_a * g0, -ombar_a * g1, -ombar_a * g2
                 grad[i, 3], grad[i, 4], grad[i, 5] = -ombar_a * g3, -ombar_a * g4, -ombar_a * g5
                 grad[i, 6], grad[i, 7], grad[i, 8] = -ombar_a * g6, -ombar_a * g7, -ombar_a * g8
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 # --------------------------------------------------------------------------- drag
@@ -206,13 +206,13 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
     relative velocity at the dust particle, the gas's velocity extrapolated with its gradient ``grad``
     (per particle; :func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`).
     """
-    _nwork = act.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for i in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 a = act[i]
                 side = KERNEL_AVERAGE
                 if gas_kernel:
@@ -237,7 +237,7 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
                 acc[i, 1] = ay
                 acc[i, 2] = az
                 tmin[i] = tm
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 @njit(parallel=True, cache=True)
@@ -246,13 +246,13 @@ def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cro
     """Gas density and sound speed at the active dust particles from their gas neighbours, with the
     gas particles' kernels: :math:`\\rho_g = \\sum_a m_a W(r, h_a)` and the normalised interpolant
     :math:`c_s = \\sum_a (m_a/\\rho_a) c_{s,a} W / \\sum_a (m_a/\\rho_a) W` (zero without neighbours)."""
-    _nwork = act.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for i in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 d = act[i]
                 rs = cw = ww = 0.0
                 if ptype[d] != GAS:
@@ -269,7 +269,7 @@ def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cro
                         ww += v
                 rho_out[i] = rs
                 cs_out[i] = cw / ww if ww > 0.0 else 0.0
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 # --------------------------------------------------------------------------- kicks
@@ -352,13 +352,13 @@ def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_d
     with the particle's own external-force steps (``ext_old``, ``ext_new``, ``last_ext``). Both
     particles of a pair get the same weights: momentum is conserved to round-off whatever the steps.
     """
-    _nwork = act.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for i in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 a = act[i]
                 wc = (tick - last_ext[a]) * tick_dt - 0.5 * ext_old[a]
                 wo = 0.5 * ext_new[a]
@@ -396,7 +396,7 @@ def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_d
                     o2 += wo * pair_f[e, 2]
                 close[i, 0], close[i, 1], close[i, 2] = c0, c1, c2
                 open_[i, 0], open_[i, 1], open_[i, 2] = o0, o1, o2
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 @njit(parallel=True, cache=True)
@@ -404,13 +404,13 @@ def kick_passive(passive, ptr, e_slot, e_pos, e_kind, act, pos, mass, tau_old, t
                  pair_s, pair_f, length, periodic, vel):
     """Kick every inactive neighbour by its share of the active pairs (closing and opening weights
     together, :func:`kick_active`), in place on ``vel``."""
-    _nwork = passive.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = passive.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for u in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for u in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 b = passive[u]
                 kx = ky = kz = 0.0
                 for f in range(ptr[u], ptr[u + 1]):
@@ -431,7 +431,7 @@ def kick_passive(passive, ptr, e_slot, e_pos, e_kind, act, pos, mass, tau_old, t
                 vel[b, 0] += kx
                 vel[b, 1] += ky
                 vel[b, 2] += kz
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 @njit(parallel=True, cache=True)

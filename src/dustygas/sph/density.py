@@ -153,13 +153,13 @@ def gasoline2_correction(pos, mass, h, rho, index, count, shape, radius, length,
     """:math:`f_a` of Wadsley et al. (2017) for the geometric-density-average force (eq. 3.3)."""
     n = pos.shape[0]
     r2max = radius * radius
-    _nwork = n
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = n
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for a in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
                 hinv = 1.0 / h[a]
                 num = 0.0
@@ -176,4 +176,4 @@ def gasoline2_correction(pos, mass, h, rho, index, count, shape, radius, length,
                         num += w / rho[a]
                         den += w / rho[b]
                 f_out[a] = num / den if den != 0.0 else 1.0
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)

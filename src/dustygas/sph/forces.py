@@ -29,14 +29,16 @@ pass. Every pair term is antisymmetric under :math:`a \\leftrightarrow b` and ev
 bitwise-antisymmetric separations, so total momentum is conserved to round-off and total energy
 :math:`\\sum_a m_a (v_a^2/2 + u_a)` is conserved exactly by the semi-discrete equations.
 
-Each particle gathers from its own neighbour row (no scatter, no atomics): the loop is parallel
-over particles and deterministic. The neighbours' columns of the packed table are read in place
-(``packed[b, _X]``): a row view ``packed[b]`` per pair makes numba count references to the table
-with an atomic add and subtract on one cache line that both threads then fight over. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|`
-(Price 2012 eqs. 84-85, used by the viscosity switches and to predict :math:`h`) and the largest pair
-signal speed (Courant condition, :meth:`dustygas.sph.SPHEngine.timestep`). A new pairwise term (e.g. dust
-drag) is one more block inside the loop of :func:`hydro_forces` or a second loop of the same
-shape over another neighbour table.
+Each particle gathers from its own neighbour row (no scatter, no atomic sums): the loop is parallel
+over particles (in chunks taken dynamically by the threads, :mod:`~dustygas.sph.workshare`) and
+deterministic. The neighbours' columns of the packed table are read in place (``packed[b, _X]``): a
+row view ``packed[b]`` per pair would make numba count references to the table with an atomic add
+and subtract, on one cache line shared by the threads. The pass also returns
+:math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|` (Price 2012 eqs. 84-85, used by the
+viscosity switches and to predict :math:`h`) and the largest pair signal speed (Courant condition,
+:meth:`dustygas.sph.SPHEngine.timestep`). A new pairwise term (e.g. dust drag) is one more block
+inside the loop of :func:`hydro_forces` or a second loop of the same shape over another neighbour
+table.
 """
 
 from __future__ import annotations

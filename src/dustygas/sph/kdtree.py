@@ -169,13 +169,13 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
         if periodic[d]:
             inv_l[d] = 1.0 / length[d]
     leaves = np.flatnonzero(qchild == -1)
-    _nwork = leaves.shape[0]
-    _nchunk = (_nwork + LEAF_CHUNK - 1) // LEAF_CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = leaves.shape[0]
+    n_chunks = (n_items + LEAF_CHUNK - 1) // LEAF_CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for il in range(_chunk * LEAF_CHUNK, min(_nwork, (_chunk + 1) * LEAF_CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for il in range(chunk * LEAF_CHUNK, min(n_items, (chunk + 1) * LEAF_CHUNK)):
                 leaf = leaves[il]
                 stack = np.empty(128, np.int64)
                 nodes = np.empty(64, np.int64)
@@ -190,4 +190,4 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
                 for k in range(qstart[leaf], qend[leaf]):
                     scan_candidates(qorder[k], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
                                     index, count, overlap)
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)

@@ -17,7 +17,10 @@ the last chunk is gone return at once)::
             ...  # the particles of chunk c
             c = next_chunk(counter)
 
-(``numba.get_num_threads()`` inside a kernel would make it uncachable: it reads a C pointer.)
+The counter is allocated in the kernel with ``np.zeros`` before the loop and never read after
+it: numba does not know that :func:`next_chunk` writes it, so it keeps the (zero-filling)
+allocation before the loop, which reads the counter, but may move a later read of it before the
+loop. (``numba.get_num_threads()`` inside a kernel would make it uncachable: it reads a C pointer.)
 Each chunk writes only its own particles' results, computed the same way whichever thread takes
 it, so the results are bit-identical for any thread count and any interleaving.
 """

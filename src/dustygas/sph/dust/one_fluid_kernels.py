@@ -106,13 +106,13 @@ def one_fluid_rates(pos, vel, mass, h, rho, omega, P, u, eps, sqrt_rho_eps, ts, 
     """
     n = pos.shape[0]
     full = model == FULL
-    _nwork = n
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = n
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for a in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
                 hinv_a = 1.0 / h[a]
                 gnorm_a = norm * hinv_a ** (ndim + 1)
@@ -226,4 +226,4 @@ def one_fluid_rates(pos, vel, mass, h, rho, omega, P, u, eps, sqrt_rho_eps, ts, 
                         du += eps_a * (1.0 - eps_a) * (dvx_a * dvx_a + dvy_a * dvy_a + dvz_a * dvz_a) / t_a
                 if heat:
                     dudt[a] += du
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)

@@ -40,7 +40,7 @@ other accelerations; the drag uses the step average of its exact solution,
 :math:`x = \\Delta t/t_{aj}`, which tends to the explicit :math:`w^*` for :math:`\\Delta t \\ll t_{aj}` and to
 the terminal drift :math:`\\Delta f\\,t_{aj}` for :math:`\\Delta t \\gg t_{aj}`, so no :math:`\\Delta t \\le t_s` limit applies.
 
-All loops gather per particle (no scatter, no atomics): deterministic for any thread count. A
+All loops gather per particle (no scatter, no atomic sums): deterministic for any thread count. A
 neighbour's columns are read in place (``table[j, _X]``), never through a row view ``table[j]``: numba
 counts the references of a view's parent with an atomic add and subtract, one cache line shared by
 all threads (measured: see benchmarks/RESULTS.md, 2026-12-03).
@@ -72,13 +72,13 @@ def pack(*columns) -> np.ndarray:
 def velocity_gradient(packed, h, rho, omega, index, count, shape, norm, ndim, length, periodic, grad):
     """:math:`(\\nabla\\mathbf v_a)_{kj} = \\partial_j v_k = -\\frac{1}{\\Omega_a\\rho_a}\\sum_b m_b (v_a - v_b)_k\\,\\partial_j W_{ab}(h_a)`,
     stored row-major in ``grad[a, 3 k + j]``; ``packed`` rows are ``(x, y, z, vx, vy, vz, m)`` (:func:`pack`)."""
-    _nwork = packed.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = packed.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for a in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 hinv = 1.0 / h[a]
                 xa, ya, za = packed[a, 0], packed[a, 1], packed[a, 2]
                 vxa, vya, vza = packed[a, 3], packed[a, 4], packed[a, 5]
@@ -112,7 +112,7 @@ def velocity_gradient(packed, h, rho, omega, index, count, shape, norm, ndim, le
                 grad[a, 6] = c * g6
                 grad[a, 7] = c * g7
                 grad[a, 8] = c * g8
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 @njit(cache=True)
@@ -166,13 +166,13 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
     gas, 2: the other one) replaces the midpoint reconstruction by the gas velocity extrapolated to the
     dust particle with the gas's own gradient, :math:`w^* = w - \\sigma_{\\rm gas}`.
     """
-    _nwork = table.shape[0]
-    _nchunk = (_nwork + CHUNK - 1) // CHUNK
-    _counter = np.zeros(1, np.int64)
+    n_items = table.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
-        _chunk = next_chunk(_counter)
-        while _chunk < _nchunk:
-            for a in range(_chunk * CHUNK, min(_nwork, (_chunk + 1) * CHUNK)):
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
                 ax = 0.0
                 ay = 0.0
                 az = 0.0
@@ -195,7 +195,7 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
                 acc[a, 2] = az
                 dudt[a] = du
                 tmin[a] = tm
-            _chunk = next_chunk(_counter)
+            chunk = next_chunk(counter)
 
 
 @njit(inline="always")
