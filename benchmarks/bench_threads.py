@@ -2,22 +2,26 @@
 
 Each case is a whole ``dustygas run`` (the run loop with its automatic thread count,
 :mod:`dustygas.threads`), timed by the loop's own wall clock (start-up and compilation
-excluded: one untimed run compiles first). Cases:
+excluded: one short untimed run compiles first). Cases:
 
 * ``si-linA``   the default job to t = 0.5 (64^2 cells + 4096 particles; 12.9 s on one thread
                 vs 40.6 s on two with one core busy, before the automatic setting);
 * ``grid``      a 2D shearing box of gas, ``shearing-wave`` at 256^2 cells, 300 steps;
-* ``sph``       a 3D SPH box, ``sph-soundwave-3d`` with 32 x 32 x 32 layers, 40 steps.
+* ``sph``       a 3D SPH box, ``sph-soundwave-3d`` with 32 x 32 x 32 layers, 200 steps (about a
+                minute on one thread; ``run.tlim`` raised so that the steps, not t = 1, end the run:
+                the 40 steps used until 2026-12-03, 6-12 s, gave two-thread ratios of 1.29 and
+                1.65 a minute apart; the work per step is the same).
 
 "busy" runs a pure-Python busy loop (one core) beside every timed run. For each case and
 condition the script prints the wall time with ``--threads 1``, ``--threads 2`` and the
-default, and the ratios default/1T (must be <= 1.10 when busy) and 1T/default (must be >= 1.8
-on a quiet machine). Thread counts alternate within each repeat; the best of ``--repeat`` is
-kept (the machine is shared).
+default, as the median and the range over ``--repeat`` repeats (the thread settings alternate
+within each repeat, so a repeat's runs see the same machine), and the ratios default/1T (must
+be <= 1.10 when busy) and 1T/default, 1T/2T (must be >= 1.8 on a quiet machine): the ratio of
+the medians, the range of the per-repeat ratios and the ratio of the best times.
 
 Run alone::
 
-    flock benchmarks/.lock python benchmarks/bench_threads.py [--cases si-linA grid sph] [--repeat 2]
+    flock benchmarks/.lock python benchmarks/bench_threads.py [--cases si-linA grid sph] [--repeat 3]
 """
 
 from __future__ import annotations
@@ -25,6 +29,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -35,8 +40,10 @@ ROOT = Path(__file__).resolve().parents[1]
 CASES = {
     "si-linA": ["si-linA", "--set", "run.tlim=0.5"],
     "grid": ["shearing-wave", "--set", "grid.nx=256", "--set", "grid.ny=256", "--set", "run.max_cycles=300"],
-    "sph": ["sph-soundwave-3d", "--set", "problem.layers=32", "--set", "run.max_cycles=40"],
+    "sph": ["sph-soundwave-3d", "--set", "problem.layers=32", "--set", "run.max_cycles=200", "--set", "run.tlim=10"],
 }
+#: the untimed run that compiles (or loads) the kernels first: the same case, three steps
+WARMUP = ["--set", "run.max_cycles=3"]
 SETTINGS = {"1T": ["--threads", "1"], "default": [], "2T": ["--threads", "2"]}
 
 
@@ -58,21 +65,35 @@ def load() -> str:
     return f"{os.getloadavg()[0]:.2f}" if hasattr(os, "getloadavg") else "?"
 
 
+def spread(values: list[float], fmt: str) -> str:
+    """``median [min-max]`` of ``values``."""
+    v = sorted(values)
+    return f"{format(statistics.median(v), fmt)} [{format(v[0], fmt)}-{format(v[-1], fmt)}]"
+
+
+def ratio(label: str, num: list[float], den: list[float]) -> str:
+    """The ratio of the medians, the range of the per-repeat ratios and the ratio of the best times."""
+    per_repeat = sorted(a / b for a, b in zip(num, den))
+    return (f"{label} {statistics.median(num) / statistics.median(den):5.3f} "
+            f"[{per_repeat[0]:5.3f}-{per_repeat[-1]:5.3f}] best {min(num) / min(den):5.3f}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     parser.add_argument("--conditions", nargs="+", default=["busy", "quiet"], choices=["busy", "quiet"])
     parser.add_argument("--settings", nargs="+", default=list(SETTINGS), choices=list(SETTINGS),
                         help="thread settings to time (2T with a busy core can take many times 1T)")
-    parser.add_argument("--repeat", type=int, default=2)
+    parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
-    print(f"# {time.strftime('%Y-%m-%d %H:%M')}  cores={os.cpu_count()}  load at start={load()}")
+    print(f"# {time.strftime('%Y-%m-%d %H:%M')}  cores={os.cpu_count()}  load at start={load()}  "
+          f"repeats={args.repeat}: median [min-max]", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         for name in args.cases:
-            run_once(CASES[name], SETTINGS["1T"], work)  # compile (cached afterwards)
+            run_once(CASES[name] + WARMUP, SETTINGS["1T"], work)  # compile (cached afterwards)
             for condition in args.conditions:
-                best: dict[str, float] = {}
+                walls: dict[str, list[float]] = {label: [] for label in args.settings}
                 chosen = set()
                 loads = []
                 for _ in range(args.repeat):
@@ -89,18 +110,19 @@ def main() -> None:
                             if hog is not None:
                                 hog.kill()
                                 hog.wait()
-                        best[label] = min(best.get(label, float("inf")), wall)
+                        walls[label].append(wall)
                         if label == "default":
                             chosen.add(threads)
-                cells = [f"{label} {best[label]:7.2f} s" for label in args.settings]
-                if "default" in best:
-                    cells[-1] += f" (threads {' | '.join(sorted(chosen))})"
-                if "default" in best and "1T" in best:
-                    cells.append(f"default/1T {best['default'] / best['1T']:5.3f}  1T/default {best['1T'] / best['default']:5.3f}")
-                if "2T" in best and "1T" in best:
-                    cells.append(f"1T/2T {best['1T'] / best['2T']:5.3f}")
-                print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}", flush=True)
-
+                cells = [f"{label} {spread(walls[label], '7.2f')} s" for label in args.settings]
+                if "default" in walls:
+                    cells[args.settings.index("default")] += f" (threads {' | '.join(sorted(chosen))})"
+                if "default" in walls and "1T" in walls:
+                    cells.append(ratio("default/1T", walls["default"], walls["1T"]))
+                    cells.append(ratio("1T/default", walls["1T"], walls["default"]))
+                if "2T" in walls and "1T" in walls:
+                    cells.append(ratio("1T/2T", walls["1T"], walls["2T"]))
+                print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}",
+                      flush=True)
 
 if __name__ == "__main__":
     main()

@@ -25,13 +25,14 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .density import DENSITY_CHUNK, row_buffers, solve_one_smoothing_length
+from .density import row_buffers, solve_one_smoothing_length
 from .dust.two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pair
 from .forces import NPACK, pack_row, pressure_pair
 from .kernels import kernel_dshape, kernel_shape
 from .neighbours import minimum_image
 from .particles import GAS
 from .viscosity import signal_speed, viscous_pair
+from .workshare import CHUNK, WORKERS, next_chunk
 
 __all__ = ["active_densities", "pack_hydro", "active_hydro", "active_drag", "gas_at_dust", "reverse_rows", "kick_active",
            "kick_passive", "kick_external", "limit_levels", "HYDRO", "DRAG", "NPACK"]
@@ -51,15 +52,19 @@ def active_densities(act, pos, mass, h_guess, h_search, same_start, same_index, 
     """Smoothing lengths and densities (thesis eq. 3.1) of the active particles from their same-species
     rows (:func:`dustygas.sph.density.solve_one_smoothing_length`); outputs per slot."""
     n = act.shape[0]
-    nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
-    for c in prange(nchunk):
-        i0, i1 = c * DENSITY_CHUNK, min(n, (c + 1) * DENSITY_CHUNK)
-        r, m = row_buffers(same_count, i0, i1)
-        for i in range(i0, i1):
-            a = act[i]
-            h_out[i], rho_out[i], omega_out[i], status[i], iterations[i] = solve_one_smoothing_length(
-                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index[same_start[i]:],
-                same_count[i], pos, mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
+    nchunk = (n + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        c = next_chunk(counter)
+        while c < nchunk:
+            i0, i1 = c * CHUNK, min(n, (c + 1) * CHUNK)
+            r, m = row_buffers(same_count, i0, i1)
+            for i in range(i0, i1):
+                a = act[i]
+                h_out[i], rho_out[i], omega_out[i], status[i], iterations[i] = solve_one_smoothing_length(
+                    pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h_guess[i], h_search[i], same_index, same_start[i],
+                    same_count[i], pos, mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
+            c = next_chunk(counter)
 
 
 # --------------------------------------------------------------------------- hydrodynamics
@@ -93,88 +98,95 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
     reconstruction is their only reader).
     """
     r2max = radius * radius
-    for i in prange(act.shape[0]):
-        a = act[i]
-        ax = ay = az = 0.0
-        div = cx = cy = cz = 0.0
-        o = same_start[i]
-        if ptype[a] != GAS:
-            for k in range(same_count[i]):
-                pair_s[o + k] = 0.0
-            acc[i, 0] = acc[i, 1] = acc[i, 2] = 0.0
-            divv[i] = curlv[i] = vsig[i] = 0.0
-            for c in range(9):
-                grad[i, c] = 0.0
-            continue
-        pa = packed[a]
-        xa, ya, za = pa[_X], pa[_Y], pa[_Z]
-        vxa, vya, vza = pa[_VX], pa[_VY], pa[_VZ]
-        wrap = periodic[0] or periodic[1] or periodic[2]
-        hinv_a = pa[_HINV]
-        gnorm_a = pa[_GRADNORM]
-        cs_a = pa[_CS]
-        alpha_a = pa[_ALPHA]
-        ombar_a = pa[_OMBAR]
-        vs = cs_a
-        g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
-        for k in range(same_count[i]):
-            b = same_index[o + k]  # the neighbour's columns read in place (a row view per pair costs ~15 %)
-            dx = xa - packed[b, _X]
-            dy = ya - packed[b, _Y]
-            dz = za - packed[b, _Z]
-            if wrap:
-                dx = minimum_image(dx, length[0], periodic[0])
-                dy = minimum_image(dy, length[1], periodic[1])
-                dz = minimum_image(dz, length[2], periodic[2])
-            r2 = dx * dx + dy * dy + dz * dz
-            hinv_b = packed[b, _HINV]
-            if r2 * hinv_a * hinv_a >= r2max and r2 * hinv_b * hinv_b >= r2max:
-                pair_s[o + k] = 0.0
-                continue
-            r = math.sqrt(r2)
-            rinv = 1.0 / r
-            dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
-            dW_b = packed[b, _GRADNORM] * kernel_dshape(shape, r * hinv_b)
-            dvx = vxa - packed[b, _VX]
-            dvy = vya - packed[b, _VY]
-            dvz = vza - packed[b, _VZ]
-            vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
-            s, _ = pressure_pair(form, pa[_FORM], packed[b, _FORM], dW_a, dW_b, pa[_P], packed[b, _P], pa[_RHOINV],
-                                 packed[b, _RHOINV], vdotr)
-            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
-                                  packed[b, _OMBAR])
-            s = (s + (qa * dW_a + qb * dW_b)) * rinv
-            pair_s[o + k] = s
-            m_b = packed[b, _M]
-            ax -= m_b * s * dx
-            ay -= m_b * s * dy
-            az -= m_b * s * dz
-            div += m_b * vdotr * dW_a
-            vs = max(vs, signal_speed(cs_a, packed[b, _CS], vdotr, beta))
-            if not gradients:
-                continue
-            w = m_b * dW_a * rinv
-            cx += w * (dvy * dz - dvz * dy)
-            cy += w * (dvz * dx - dvx * dz)
-            cz += w * (dvx * dy - dvy * dx)
-            g0 += w * dvx * dx
-            g1 += w * dvx * dy
-            g2 += w * dvx * dz
-            g3 += w * dvy * dx
-            g4 += w * dvy * dy
-            g5 += w * dvy * dz
-            g6 += w * dvz * dx
-            g7 += w * dvz * dy
-            g8 += w * dvz * dz
-        acc[i, 0] = ax
-        acc[i, 1] = ay
-        acc[i, 2] = az
-        divv[i] = -ombar_a * div
-        curlv[i] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
-        vsig[i] = vs
-        grad[i, 0], grad[i, 1], grad[i, 2] = -ombar_a * g0, -ombar_a * g1, -ombar_a * g2
-        grad[i, 3], grad[i, 4], grad[i, 5] = -ombar_a * g3, -ombar_a * g4, -ombar_a * g5
-        grad[i, 6], grad[i, 7], grad[i, 8] = -ombar_a * g6, -ombar_a * g7, -ombar_a * g8
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                a = act[i]
+                ax = ay = az = 0.0
+                div = cx = cy = cz = 0.0
+                o = same_start[i]
+                if ptype[a] != GAS:
+                    for k in range(same_count[i]):
+                        pair_s[o + k] = 0.0
+                    acc[i, 0] = acc[i, 1] = acc[i, 2] = 0.0
+                    divv[i] = curlv[i] = vsig[i] = 0.0
+                    for c in range(9):
+                        grad[i, c] = 0.0
+                    continue
+                xa, ya, za = packed[a, _X], packed[a, _Y], packed[a, _Z]
+                vxa, vya, vza = packed[a, _VX], packed[a, _VY], packed[a, _VZ]
+                wrap = periodic[0] or periodic[1] or periodic[2]
+                hinv_a = packed[a, _HINV]
+                gnorm_a = packed[a, _GRADNORM]
+                cs_a = packed[a, _CS]
+                alpha_a = packed[a, _ALPHA]
+                ombar_a = packed[a, _OMBAR]
+                form_a, P_a, rhoinv_a = packed[a, _FORM], packed[a, _P], packed[a, _RHOINV]
+                vs = cs_a
+                g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
+                for k in range(same_count[i]):
+                    b = same_index[o + k]  # the neighbour's columns read in place (a row view per pair costs ~15 %)
+                    dx = xa - packed[b, _X]
+                    dy = ya - packed[b, _Y]
+                    dz = za - packed[b, _Z]
+                    if wrap:
+                        dx = minimum_image(dx, length[0], periodic[0])
+                        dy = minimum_image(dy, length[1], periodic[1])
+                        dz = minimum_image(dz, length[2], periodic[2])
+                    r2 = dx * dx + dy * dy + dz * dz
+                    hinv_b = packed[b, _HINV]
+                    if r2 * hinv_a * hinv_a >= r2max and r2 * hinv_b * hinv_b >= r2max:
+                        pair_s[o + k] = 0.0
+                        continue
+                    r = math.sqrt(r2)
+                    rinv = 1.0 / r
+                    dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
+                    dW_b = packed[b, _GRADNORM] * kernel_dshape(shape, r * hinv_b)
+                    dvx = vxa - packed[b, _VX]
+                    dvy = vya - packed[b, _VY]
+                    dvz = vza - packed[b, _VZ]
+                    vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
+                    s, _ = pressure_pair(form, form_a, packed[b, _FORM], dW_a, dW_b, P_a, packed[b, _P], rhoinv_a,
+                                         packed[b, _RHOINV], vdotr)
+                    qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
+                                          packed[b, _OMBAR])
+                    s = (s + (qa * dW_a + qb * dW_b)) * rinv
+                    pair_s[o + k] = s
+                    m_b = packed[b, _M]
+                    ax -= m_b * s * dx
+                    ay -= m_b * s * dy
+                    az -= m_b * s * dz
+                    div += m_b * vdotr * dW_a
+                    vs = max(vs, signal_speed(cs_a, packed[b, _CS], vdotr, beta))
+                    if not gradients:
+                        continue
+                    w = m_b * dW_a * rinv
+                    cx += w * (dvy * dz - dvz * dy)
+                    cy += w * (dvz * dx - dvx * dz)
+                    cz += w * (dvx * dy - dvy * dx)
+                    g0 += w * dvx * dx
+                    g1 += w * dvx * dy
+                    g2 += w * dvx * dz
+                    g3 += w * dvy * dx
+                    g4 += w * dvy * dy
+                    g5 += w * dvy * dz
+                    g6 += w * dvz * dx
+                    g7 += w * dvz * dy
+                    g8 += w * dvz * dz
+                acc[i, 0] = ax
+                acc[i, 1] = ay
+                acc[i, 2] = az
+                divv[i] = -ombar_a * div
+                curlv[i] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
+                vsig[i] = vs
+                grad[i, 0], grad[i, 1], grad[i, 2] = -ombar_a * g0, -ombar_a * g1, -ombar_a * g2
+                grad[i, 3], grad[i, 4], grad[i, 5] = -ombar_a * g3, -ombar_a * g4, -ombar_a * g5
+                grad[i, 6], grad[i, 7], grad[i, 8] = -ombar_a * g6, -ombar_a * g7, -ombar_a * g8
+            chunk = next_chunk(counter)
 
 
 # --------------------------------------------------------------------------- drag
@@ -194,31 +206,38 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
     relative velocity at the dust particle, the gas's velocity extrapolated with its gradient ``grad``
     (per particle; :func:`dustygas.sph.dust.two_fluid_kernels.drag_pair`).
     """
-    for i in prange(act.shape[0]):
-        a = act[i]
-        side = KERNEL_AVERAGE
-        if gas_kernel:
-            side = KERNEL_OWN if ptype[a] == GAS else KERNEL_OTHER
-        ax = ay = az = 0.0
-        tm = math.inf
-        o = cross_start[i]
-        for k in range(cross_count[i]):
-            j = cross_index[o + k]
-            dt_pair = min(tau[a], tau[j]) if implicit else 0.0
-            fx, fy, fz, _, tp = drag_pair(table, grad, table, grad, a, j, shape, ndim, length, periodic, c_const,
-                                          projected, gas_slope, False, dt_pair, False, side,
-                                          (1 if ptype[a] == GAS else 2) if gas_slope else 0)
-            pair_f[o + k, 0] = fx
-            pair_f[o + k, 1] = fy
-            pair_f[o + k, 2] = fz
-            ax += fx
-            ay += fy
-            az += fz
-            tm = min(tm, tp)
-        acc[i, 0] = ax
-        acc[i, 1] = ay
-        acc[i, 2] = az
-        tmin[i] = tm
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                a = act[i]
+                side = KERNEL_AVERAGE
+                if gas_kernel:
+                    side = KERNEL_OWN if ptype[a] == GAS else KERNEL_OTHER
+                ax = ay = az = 0.0
+                tm = math.inf
+                o = cross_start[i]
+                for k in range(cross_count[i]):
+                    j = cross_index[o + k]
+                    dt_pair = min(tau[a], tau[j]) if implicit else 0.0
+                    fx, fy, fz, _, tp = drag_pair(table, grad, table, grad, a, j, shape, ndim, length, periodic,
+                                                  c_const, projected, gas_slope, False, dt_pair, False, side,
+                                                  (1 if ptype[a] == GAS else 2) if gas_slope else 0)
+                    pair_f[o + k, 0] = fx
+                    pair_f[o + k, 1] = fy
+                    pair_f[o + k, 2] = fz
+                    ax += fx
+                    ay += fy
+                    az += fz
+                    tm = min(tm, tp)
+                acc[i, 0] = ax
+                acc[i, 1] = ay
+                acc[i, 2] = az
+                tmin[i] = tm
+            chunk = next_chunk(counter)
 
 
 @njit(parallel=True, cache=True)
@@ -227,23 +246,30 @@ def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cro
     """Gas density and sound speed at the active dust particles from their gas neighbours, with the
     gas particles' kernels: :math:`\\rho_g = \\sum_a m_a W(r, h_a)` and the normalised interpolant
     :math:`c_s = \\sum_a (m_a/\\rho_a) c_{s,a} W / \\sum_a (m_a/\\rho_a) W` (zero without neighbours)."""
-    for i in prange(act.shape[0]):
-        d = act[i]
-        rs = cw = ww = 0.0
-        if ptype[d] != GAS:
-            for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-                a = cross_index[e]
-                dx = pos[d, 0] - pos[a, 0]
-                dy = pos[d, 1] - pos[a, 1]
-                dz = pos[d, 2] - pos[a, 2]
-                hinv = 1.0 / h[a]
-                w = norm * hinv**ndim * kernel_shape(shape, math.sqrt(dx * dx + dy * dy + dz * dz) * hinv)[0]
-                rs += mass[a] * w
-                v = mass[a] / rho[a] * w
-                cw += v * cs[a]
-                ww += v
-        rho_out[i] = rs
-        cs_out[i] = cw / ww if ww > 0.0 else 0.0
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                d = act[i]
+                rs = cw = ww = 0.0
+                if ptype[d] != GAS:
+                    for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+                        a = cross_index[e]
+                        dx = pos[d, 0] - pos[a, 0]
+                        dy = pos[d, 1] - pos[a, 1]
+                        dz = pos[d, 2] - pos[a, 2]
+                        hinv = 1.0 / h[a]
+                        w = norm * hinv**ndim * kernel_shape(shape, math.sqrt(dx * dx + dy * dy + dz * dz) * hinv)[0]
+                        rs += mass[a] * w
+                        v = mass[a] / rho[a] * w
+                        cw += v * cs[a]
+                        ww += v
+                rho_out[i] = rs
+                cs_out[i] = cw / ww if ww > 0.0 else 0.0
+            chunk = next_chunk(counter)
 
 
 # --------------------------------------------------------------------------- kicks
@@ -326,44 +352,51 @@ def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_d
     with the particle's own external-force steps (``ext_old``, ``ext_new``, ``last_ext``). Both
     particles of a pair get the same weights: momentum is conserved to round-off whatever the steps.
     """
-    for i in prange(act.shape[0]):
-        a = act[i]
-        wc = (tick - last_ext[a]) * tick_dt - 0.5 * ext_old[a]
-        wo = 0.5 * ext_new[a]
-        c0 = wc * acc_ext[i, 0]
-        c1 = wc * acc_ext[i, 1]
-        c2 = wc * acc_ext[i, 2]
-        o0 = wo * acc_ext[i, 0]
-        o1 = wo * acc_ext[i, 1]
-        o2 = wo * acc_ext[i, 2]
-        if ptype[a] == GAS:
-            xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-            for e in range(same_start[i], same_start[i] + same_count[i]):
-                s = pair_s[e]
-                if s == 0.0:
-                    continue
-                b = same_index[e]
-                f = -mass[b] * s
-                fx = f * minimum_image(xa - pos[b, 0], length[0], periodic[0])
-                fy = f * minimum_image(ya - pos[b, 1], length[1], periodic[1])
-                fz = f * minimum_image(za - pos[b, 2], length[2], periodic[2])
-                wc, wo = _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt)
-                c0 += wc * fx
-                c1 += wc * fy
-                c2 += wc * fz
-                o0 += wo * fx
-                o1 += wo * fy
-                o2 += wo * fz
-        for e in range(cross_start[i], cross_start[i] + cross_count[i]):
-            wc, wo = _weights(a, cross_index[e], tau_old, tau_new, last_tick, tick, tick_dt)
-            c0 += wc * pair_f[e, 0]
-            c1 += wc * pair_f[e, 1]
-            c2 += wc * pair_f[e, 2]
-            o0 += wo * pair_f[e, 0]
-            o1 += wo * pair_f[e, 1]
-            o2 += wo * pair_f[e, 2]
-        close[i, 0], close[i, 1], close[i, 2] = c0, c1, c2
-        open_[i, 0], open_[i, 1], open_[i, 2] = o0, o1, o2
+    n_items = act.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for i in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                a = act[i]
+                wc = (tick - last_ext[a]) * tick_dt - 0.5 * ext_old[a]
+                wo = 0.5 * ext_new[a]
+                c0 = wc * acc_ext[i, 0]
+                c1 = wc * acc_ext[i, 1]
+                c2 = wc * acc_ext[i, 2]
+                o0 = wo * acc_ext[i, 0]
+                o1 = wo * acc_ext[i, 1]
+                o2 = wo * acc_ext[i, 2]
+                if ptype[a] == GAS:
+                    xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+                    for e in range(same_start[i], same_start[i] + same_count[i]):
+                        s = pair_s[e]
+                        if s == 0.0:
+                            continue
+                        b = same_index[e]
+                        f = -mass[b] * s
+                        fx = f * minimum_image(xa - pos[b, 0], length[0], periodic[0])
+                        fy = f * minimum_image(ya - pos[b, 1], length[1], periodic[1])
+                        fz = f * minimum_image(za - pos[b, 2], length[2], periodic[2])
+                        wc, wo = _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt)
+                        c0 += wc * fx
+                        c1 += wc * fy
+                        c2 += wc * fz
+                        o0 += wo * fx
+                        o1 += wo * fy
+                        o2 += wo * fz
+                for e in range(cross_start[i], cross_start[i] + cross_count[i]):
+                    wc, wo = _weights(a, cross_index[e], tau_old, tau_new, last_tick, tick, tick_dt)
+                    c0 += wc * pair_f[e, 0]
+                    c1 += wc * pair_f[e, 1]
+                    c2 += wc * pair_f[e, 2]
+                    o0 += wo * pair_f[e, 0]
+                    o1 += wo * pair_f[e, 1]
+                    o2 += wo * pair_f[e, 2]
+                close[i, 0], close[i, 1], close[i, 2] = c0, c1, c2
+                open_[i, 0], open_[i, 1], open_[i, 2] = o0, o1, o2
+            chunk = next_chunk(counter)
 
 
 @njit(parallel=True, cache=True)
@@ -371,27 +404,34 @@ def kick_passive(passive, ptr, e_slot, e_pos, e_kind, act, pos, mass, tau_old, t
                  pair_s, pair_f, length, periodic, vel):
     """Kick every inactive neighbour by its share of the active pairs (closing and opening weights
     together, :func:`kick_active`), in place on ``vel``."""
-    for u in prange(passive.shape[0]):
-        b = passive[u]
-        kx = ky = kz = 0.0
-        for f in range(ptr[u], ptr[u + 1]):
-            a = act[e_slot[f]]
-            e = e_pos[f]
-            wc, wo = _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt)
-            w = wc + wo
-            if e_kind[f] == HYDRO:
-                c = w * mass[a] * pair_s[e]  # + m_a s r_ab / r_ab
-                kx += c * minimum_image(pos[a, 0] - pos[b, 0], length[0], periodic[0])
-                ky += c * minimum_image(pos[a, 1] - pos[b, 1], length[1], periodic[1])
-                kz += c * minimum_image(pos[a, 2] - pos[b, 2], length[2], periodic[2])
-            else:
-                c = -w * mass[a] / mass[b]
-                kx += c * pair_f[e, 0]
-                ky += c * pair_f[e, 1]
-                kz += c * pair_f[e, 2]
-        vel[b, 0] += kx
-        vel[b, 1] += ky
-        vel[b, 2] += kz
+    n_items = passive.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for u in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                b = passive[u]
+                kx = ky = kz = 0.0
+                for f in range(ptr[u], ptr[u + 1]):
+                    a = act[e_slot[f]]
+                    e = e_pos[f]
+                    wc, wo = _weights(a, b, tau_old, tau_new, last_tick, tick, tick_dt)
+                    w = wc + wo
+                    if e_kind[f] == HYDRO:
+                        c = w * mass[a] * pair_s[e]  # + m_a s r_ab / r_ab
+                        kx += c * minimum_image(pos[a, 0] - pos[b, 0], length[0], periodic[0])
+                        ky += c * minimum_image(pos[a, 1] - pos[b, 1], length[1], periodic[1])
+                        kz += c * minimum_image(pos[a, 2] - pos[b, 2], length[2], periodic[2])
+                    else:
+                        c = -w * mass[a] / mass[b]
+                        kx += c * pair_f[e, 0]
+                        ky += c * pair_f[e, 1]
+                        kz += c * pair_f[e, 2]
+                vel[b, 0] += kx
+                vel[b, 1] += ky
+                vel[b, 2] += kz
+            chunk = next_chunk(counter)
 
 
 @njit(parallel=True, cache=True)

@@ -21,6 +21,7 @@ from numba import njit, prange
 
 from .kdtree import leaves_in_reach
 from .pairs import gather_candidates, minimum_image
+from .workshare import WORKERS, next_chunk
 
 __all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
 
@@ -83,7 +84,8 @@ def leaf_of_particles(order, start, end, child, n):
 
 #: groups of at least this many active particles gather their candidates into contiguous arrays first
 GATHER_MIN = 4
-#: groups per parallel chunk (each chunk allocates its scratch arrays once)
+#: groups per chunk of the parallel search (handed out dynamically: :mod:`~dustygas.sph.workshare`; each
+#: worker allocates its scratch arrays once)
 SEARCH_CHUNK = 32
 
 
@@ -120,7 +122,12 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
     r2 = radius * radius
     wrap = periodic[0] or periodic[1] or periodic[2]
     ngroups = group.shape[0] - 1
-    for c in prange((ngroups + SEARCH_CHUNK - 1) // SEARCH_CHUNK):
+    nchunk = (ngroups + SEARCH_CHUNK - 1) // SEARCH_CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        c = next_chunk(counter)
+        if c >= nchunk:
+            continue  # no work left for this worker: no scratch either
         qlo = np.empty(3)
         qhi = np.empty(3)
         nodes = np.empty(64, np.int64)
@@ -128,74 +135,77 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
         cap = 0
         px = py = pz = ph2 = d2 = np.empty(0)
         pid = np.empty(0, np.int64)
-        for g in range(c * SEARCH_CHUNK, min((c + 1) * SEARCH_CHUNK, ngroups)):
-            s0, s1 = group[g], group[g + 1]
-            for d in range(3):
-                qlo[d] = np.inf
-                qhi[d] = -np.inf
-            qh = 0.0
-            for i in range(s0, s1):
-                a = act[i]
+        while c < nchunk:
+            for g in range(c * SEARCH_CHUNK, min((c + 1) * SEARCH_CHUNK, ngroups)):
+                s0, s1 = group[g], group[g + 1]
                 for d in range(3):
-                    qlo[d] = min(qlo[d], pos[a, d])
-                    qhi[d] = max(qhi[d], pos[a, d])
-                qh = max(qh, h_query[i])
-            m, nl = leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
-            if nl > nodes.shape[0]:
-                nodes = np.empty(2 * nl, np.int64)
-                leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
-            gathered = s1 - s0 >= GATHER_MIN
-            if gathered:
-                if m > cap:
-                    cap = 2 * m
-                    px = np.empty(cap)
-                    py = np.empty(cap)
-                    pz = np.empty(cap)
-                    ph2 = np.empty(cap)
-                    d2 = np.empty(cap)
-                    pid = np.empty(cap, np.int64)
-                gather_candidates(nodes, nl, start, end, order, pos, h_src, px, py, pz, ph2, pid)
-            for i in range(s0, s1):
-                a = act[i]
-                xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-                ha2 = h_query[i] * h_query[i]
-                ta = ptype[a]
-                ns = nc = 0
-                o_s, room_s = same_start[i], same_room[i]
-                o_c, room_c = cross_start[i], cross_room[i]
-                if not gathered:  # test the leaves' particles in place
-                    for t in range(nl):
-                        node = nodes[t]
-                        for k in range(start[node], end[node]):
-                            b = order[k]
-                            dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
-                            dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
-                            dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
-                            hb = h_src[b]
-                            if dx * dx + dy * dy + dz * dz - r2 * max(ha2, hb * hb) < 0.0 and b != a \
-                                    and ptype[b] != DEAD:
-                                ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c,
-                                                room_c, nc)
-                else:
-                    if wrap:
-                        for j in range(m):
-                            dx = minimum_image(xa - px[j], length[0], periodic[0])
-                            dy = minimum_image(ya - py[j], length[1], periodic[1])
-                            dz = minimum_image(za - pz[j], length[2], periodic[2])
-                            d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+                    qlo[d] = np.inf
+                    qhi[d] = -np.inf
+                qh = 0.0
+                for i in range(s0, s1):
+                    a = act[i]
+                    for d in range(3):
+                        qlo[d] = min(qlo[d], pos[a, d])
+                        qhi[d] = max(qhi[d], pos[a, d])
+                    qh = max(qh, h_query[i])
+                m, nl = leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes,
+                                        stack)
+                if nl > nodes.shape[0]:
+                    nodes = np.empty(2 * nl, np.int64)
+                    leaves_in_reach(qlo, qhi, qh, lo, hi, hmax, child, start, end, length, periodic, r2, nodes, stack)
+                gathered = s1 - s0 >= GATHER_MIN
+                if gathered:
+                    if m > cap:
+                        cap = 2 * m
+                        px = np.empty(cap)
+                        py = np.empty(cap)
+                        pz = np.empty(cap)
+                        ph2 = np.empty(cap)
+                        d2 = np.empty(cap)
+                        pid = np.empty(cap, np.int64)
+                    gather_candidates(nodes, nl, start, end, order, pos, h_src, px, py, pz, ph2, pid)
+                for i in range(s0, s1):
+                    a = act[i]
+                    xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+                    ha2 = h_query[i] * h_query[i]
+                    ta = ptype[a]
+                    ns = nc = 0
+                    o_s, room_s = same_start[i], same_room[i]
+                    o_c, room_c = cross_start[i], cross_room[i]
+                    if not gathered:  # test the leaves' particles in place
+                        for t in range(nl):
+                            node = nodes[t]
+                            for k in range(start[node], end[node]):
+                                b = order[k]
+                                dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
+                                dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
+                                dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
+                                hb = h_src[b]
+                                if dx * dx + dy * dy + dz * dz - r2 * max(ha2, hb * hb) < 0.0 and b != a \
+                                        and ptype[b] != DEAD:
+                                    ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c,
+                                                    room_c, nc)
                     else:
-                        for j in range(m):  # vectorised: no branch
-                            dx = xa - px[j]
-                            dy = ya - py[j]
-                            dz = za - pz[j]
-                            d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
-                    for j in range(m):
-                        b = pid[j]
-                        if d2[j] < 0.0 and b != a and ptype[b] != DEAD:
-                            ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c, room_c,
-                                            nc)
-                same_count[i] = ns
-                cross_count[i] = nc
+                        if wrap:
+                            for j in range(m):
+                                dx = minimum_image(xa - px[j], length[0], periodic[0])
+                                dy = minimum_image(ya - py[j], length[1], periodic[1])
+                                dz = minimum_image(za - pz[j], length[2], periodic[2])
+                                d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+                        else:
+                            for j in range(m):  # vectorised: no branch
+                                dx = xa - px[j]
+                                dy = ya - py[j]
+                                dz = za - pz[j]
+                                d2[j] = dx * dx + dy * dy + dz * dz - r2 * max(ha2, ph2[j])
+                        for j in range(m):
+                            b = pid[j]
+                            if d2[j] < 0.0 and b != a and ptype[b] != DEAD:
+                                ns, nc = _enter(b, ptype[b], ta, same_index, o_s, room_s, ns, cross_index, o_c, room_c,
+                                                nc)
+                    same_count[i] = ns
+                    cross_count[i] = nc
+            c = next_chunk(counter)
 
 
 @njit(cache=True)

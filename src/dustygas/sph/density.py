@@ -30,6 +30,7 @@ from numba import njit, prange
 
 from .kernels import kernel_shape
 from .neighbours import minimum_image
+from .workshare import CHUNK, WORKERS, next_chunk
 
 __all__ = ["H_CONVERGED", "H_NEEDS_NEIGHBOURS", "H_NOT_CONVERGED", "solve_smoothing_lengths",
            "solve_one_smoothing_length", "row_buffers", "gasoline2_correction", "DENSITY_CHUNK"]
@@ -52,14 +53,20 @@ def solve_smoothing_lengths(pos, mass, h, index, count, h_search, shape, norm, r
     for ``h_search`` (every neighbour with :math:`r < R h^{\\rm search}_a`).
     """
     n = pos.shape[0]
+    cap = index.shape[1]
+    flat = index.reshape(n * cap)  # rows read at offsets: no row view (and no reference count) per particle
     nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
-    for c in prange(nchunk):
-        a0, a1 = c * DENSITY_CHUNK, min(n, (c + 1) * DENSITY_CHUNK)
-        r, m = row_buffers(count, a0, a1)
-        for a in range(a0, a1):
-            h[a], rho[a], omega[a], status[a], iterations[a] = solve_one_smoothing_length(
-                pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], index[a], count[a], pos, mass, shape,
-                norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        c = next_chunk(counter)
+        while c < nchunk:
+            a0, a1 = c * DENSITY_CHUNK, min(n, (c + 1) * DENSITY_CHUNK)
+            r, m = row_buffers(count, a0, a1)
+            for a in range(a0, a1):
+                h[a], rho[a], omega[a], status[a], iterations[a] = solve_one_smoothing_length(
+                    pos[a, 0], pos[a, 1], pos[a, 2], mass[a], h[a], h_search[a], flat, a * cap, count[a], pos,
+                    mass, shape, norm, ndim, hfact, length, periodic, tol, maxiter, r, m)
+            c = next_chunk(counter)
 
 
 @njit(inline="always")
@@ -73,10 +80,12 @@ def row_buffers(count, a0, a1):
 
 
 @njit(inline="always")
-def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, pos, mass, shape, norm, ndim, hfact,
-                               length, periodic, tol, maxiter, r, m):
+def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, index, start, n_row, pos, mass, shape, norm, ndim,
+                               hfact, length, periodic, tol, maxiter, r, m):
     """Newton-Raphson with bisection fallback for one particle at ``(xa, ya, za)`` of mass ``ma``
-    whose neighbours are ``pos[row[:n_row]]`` (complete within :math:`R h_{\\rm search}`).
+    whose neighbours are ``pos[index[start:start + n_row]]`` (complete within :math:`R h_{\\rm search}`;
+    ``index`` one-dimensional, read in place: a row view per particle would count references to the
+    shared table atomically, a cache line that two threads then fight over).
 
     ``r``, ``m``: scratch arrays of at least ``n_row`` entries (:func:`row_buffers`). Returns
     ``(h, rho, omega, status, iterations)`` (module docstring); shared by
@@ -93,7 +102,7 @@ def solve_one_smoothing_length(xa, ya, za, ma, h_guess, h_search, row, n_row, po
     it = 0
     # the distances and masses of the row, gathered once for every iteration
     for k in range(n_row):
-        b = row[k]
+        b = index[start + k]
         dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
         dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
         dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
@@ -144,20 +153,27 @@ def gasoline2_correction(pos, mass, h, rho, index, count, shape, radius, length,
     """:math:`f_a` of Wadsley et al. (2017) for the geometric-density-average force (eq. 3.3)."""
     n = pos.shape[0]
     r2max = radius * radius
-    for a in prange(n):
-        xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-        hinv = 1.0 / h[a]
-        num = 0.0
-        den = 0.0
-        for k in range(count[a]):
-            b = index[a, k]
-            dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
-            dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
-            dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
-            r2 = dx * dx + dy * dy + dz * dz
-            q2 = r2 * hinv * hinv
-            if q2 < r2max:
-                w = mass[b] * r2 * kernel_shape(shape, np.sqrt(q2))[1]
-                num += w / rho[a]
-                den += w / rho[b]
-        f_out[a] = num / den if den != 0.0 else 1.0
+    n_items = n
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+                hinv = 1.0 / h[a]
+                num = 0.0
+                den = 0.0
+                for k in range(count[a]):
+                    b = index[a, k]
+                    dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
+                    dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
+                    dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
+                    r2 = dx * dx + dy * dy + dz * dz
+                    q2 = r2 * hinv * hinv
+                    if q2 < r2max:
+                        w = mass[b] * r2 * kernel_shape(shape, np.sqrt(q2))[1]
+                        num += w / rho[a]
+                        den += w / rho[b]
+                f_out[a] = num / den if den != 0.0 else 1.0
+            chunk = next_chunk(counter)

@@ -37,7 +37,6 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
-import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
@@ -56,9 +55,6 @@ from .viscosity import cullen_dehnen_alpha, morris_monaghan_rate
 __all__ = ["SPHOptions", "SPHEngine", "snapshot_attrs"]
 
 _DERIVED = ("rho", "omega", "P", "cs", "acc", "dudt", "divv", "curlv", "vsig", "dalpha", "phi", "fcorr")
-#: particles per chunk handed to a thread: dynamic scheduling keeps both cores busy when the
-#: machine is shared (a descheduled thread does not hold up the loop); results are unaffected.
-PARALLEL_CHUNK = 256
 
 
 def snapshot_attrs(engine) -> dict[str, Any]:
@@ -270,10 +266,6 @@ class SPHEngine:
     def update_derivatives(self, vel: np.ndarray | None = None, u: np.ndarray | None = None,
                            alpha: np.ndarray | None = None) -> None:
         """Recompute h, densities, pressures and all time derivatives at the current positions."""
-        with numba.parallel_chunksize(PARALLEL_CHUNK):
-            self._update_derivatives(vel, u, alpha)
-
-    def _update_derivatives(self, vel, u, alpha) -> None:
         p, o, k = self.particles, self.options, self.kernel
         vel = p.vel if vel is None else vel
         u = p.u if u is None else u
@@ -349,10 +341,6 @@ class SPHEngine:
 
     def advance(self, dt: float) -> None:
         """One kick-drift-kick step of length ``dt`` (:mod:`dustygas.sph.integrator`)."""
-        with numba.parallel_chunksize(PARALLEL_CHUNK):
-            self._advance(dt)
-
-    def _advance(self, dt: float) -> None:
         o = self.options
         if o.reorder_every and self.cycle % o.reorder_every == 0:
             self.reorder(self.finder.spatial_order(self.particles.pos, self.particles.h))

@@ -29,12 +29,16 @@ pass. Every pair term is antisymmetric under :math:`a \\leftrightarrow b` and ev
 bitwise-antisymmetric separations, so total momentum is conserved to round-off and total energy
 :math:`\\sum_a m_a (v_a^2/2 + u_a)` is conserved exactly by the semi-discrete equations.
 
-Each particle gathers from its own neighbour row (no scatter, no atomics): the loop is parallel
-over particles and deterministic. The pass also returns :math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|`
-(Price 2012 eqs. 84-85, used by the viscosity switches and to predict :math:`h`) and the largest pair
-signal speed (Courant condition, :meth:`dustygas.sph.SPHEngine.timestep`). A new pairwise term (e.g. dust
-drag) is one more block inside the loop of :func:`hydro_forces` or a second loop of the same
-shape over another neighbour table.
+Each particle gathers from its own neighbour row (no scatter, no atomic sums): the loop is parallel
+over particles (in chunks taken dynamically by the threads, :mod:`~dustygas.sph.workshare`) and
+deterministic. The neighbours' columns of the packed table are read in place (``packed[b, _X]``): a
+row view ``packed[b]`` per pair would make numba count references to the table with an atomic add
+and subtract, on one cache line shared by the threads. The pass also returns
+:math:`\\nabla\\cdot\\mathbf v_a` and :math:`|\\nabla\\times\\mathbf v_a|` (Price 2012 eqs. 84-85, used by the
+viscosity switches and to predict :math:`h`) and the largest pair signal speed (Courant condition,
+:meth:`dustygas.sph.SPHEngine.timestep`). A new pairwise term (e.g. dust drag) is one more block
+inside the loop of :func:`hydro_forces` or a second loop of the same shape over another neighbour
+table.
 """
 
 from __future__ import annotations
@@ -47,6 +51,7 @@ from numba import njit, prange
 from .kernels import kernel_dshape
 from .neighbours import minimum_image
 from .viscosity import conductivity_signal, signal_speed, viscous_pair
+from .workshare import CHUNK, WORKERS, next_chunk
 
 __all__ = ["PRICE2012", "GASOLINE2", "FORCE_FORMS", "NPACK", "pack_particles", "pack_row", "pressure_pair",
            "hydro_forces"]
@@ -121,80 +126,95 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
     n = packed.shape[0]
     r2max = radius * radius
     conduct = evolve_u and alpha_u > 0.0
-    for a in prange(n):
-        pa = packed[a]
-        xa, ya, za = pa[_X], pa[_Y], pa[_Z]
-        vxa, vya, vza = pa[_VX], pa[_VY], pa[_VZ]
-        hinv_a = pa[_HINV]
-        gnorm_a = pa[_GRADNORM]
-        P_a = pa[_P]
-        rhoinv_a = pa[_RHOINV]
-        ombar_a = pa[_OMBAR]
-        form_a = pa[_FORM]
-        cs_a = pa[_CS]
-        alpha_a = pa[_ALPHA]
-        u_a = pa[_U]
-        rho_a = pa[_RHO]
-        ax = 0.0
-        ay = 0.0
-        az = 0.0
-        du = 0.0
-        div = 0.0
-        cx = 0.0
-        cy = 0.0
-        cz = 0.0
-        vs = cs_a
-        for k in range(count[a]):
-            b = index[a, k]
-            pb = packed[b]
-            dx = minimum_image(xa - pb[_X], length[0], periodic[0])
-            dy = minimum_image(ya - pb[_Y], length[1], periodic[1])
-            dz = minimum_image(za - pb[_Z], length[2], periodic[2])
-            r2 = dx * dx + dy * dy + dz * dz
-            hinv_b = pb[_HINV]
-            qa2 = r2 * hinv_a * hinv_a
-            qb2 = r2 * hinv_b * hinv_b
-            if qa2 >= r2max and qb2 >= r2max:
-                continue
-            r = math.sqrt(r2)
-            rinv = 1.0 / r
-            # kernel shapes vanish beyond the support: no branch on q needed
-            dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
-            dW_b = pb[_GRADNORM] * kernel_dshape(shape, r * hinv_b)
-            m_b = pb[_M]
-            dvx = vxa - pb[_VX]
-            dvy = vya - pb[_VY]
-            dvz = vza - pb[_VZ]
-            vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
-            # pressure
-            s, du_a = pressure_pair(form, form_a, pb[_FORM], dW_a, dW_b, P_a, pb[_P], rhoinv_a, pb[_RHOINV], vdotr)
-            du += du_a * m_b
-            # artificial viscosity (zero for receding pairs)
-            qa, qb = viscous_pair(vdotr, alpha_a, cs_a, pb[_ALPHA], pb[_CS], beta, ombar_a, pb[_OMBAR])
-            s += qa * dW_a + qb * dW_b
-            du += qa * dW_a * vdotr * m_b
-            # artificial conductivity
-            if conduct:
-                vsu = conductivity_signal(P_a, pb[_P], rho_a, pb[_RHO])
-                du += m_b * alpha_u * vsu * (u_a - pb[_U]) * 0.5 * (ombar_a * dW_a + pb[_OMBAR] * dW_b)
-            s *= m_b * rinv
-            ax -= s * dx
-            ay -= s * dy
-            az -= s * dz
-            div += m_b * vdotr * dW_a
-            w = m_b * dW_a * rinv  # v_ab x grad_a W_ab(h_a), summed
-            cx += w * (dvy * dz - dvz * dy)
-            cy += w * (dvz * dx - dvx * dz)
-            cz += w * (dvx * dy - dvy * dx)
-            v = signal_speed(cs_a, pb[_CS], vdotr, beta)
-            vs = max(vs, v)
-        acc[a, 0] = ax
-        acc[a, 1] = ay
-        acc[a, 2] = az
-        dudt[a] = du if evolve_u else 0.0
-        divv[a] = -ombar_a * div
-        curlv[a] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
-        vsig[a] = vs
+    nchunk = (n + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        c = next_chunk(counter)
+        while c < nchunk:
+            for a in range(c * CHUNK, min(n, (c + 1) * CHUNK)):
+                _hydro_row(a, packed, index, count, shape, r2max, length, periodic, form, beta, alpha_u, evolve_u,
+                           conduct, acc, dudt, divv, curlv, vsig)
+            c = next_chunk(counter)
+
+
+@njit(inline="always")
+def _hydro_row(a, packed, index, count, shape, r2max, length, periodic, form, beta, alpha_u, evolve_u, conduct, acc,
+               dudt, divv, curlv, vsig):
+    """The pair sums of particle ``a`` (:func:`hydro_forces`)."""
+    xa, ya, za = packed[a, _X], packed[a, _Y], packed[a, _Z]
+    vxa, vya, vza = packed[a, _VX], packed[a, _VY], packed[a, _VZ]
+    hinv_a = packed[a, _HINV]
+    gnorm_a = packed[a, _GRADNORM]
+    P_a = packed[a, _P]
+    rhoinv_a = packed[a, _RHOINV]
+    ombar_a = packed[a, _OMBAR]
+    form_a = packed[a, _FORM]
+    cs_a = packed[a, _CS]
+    alpha_a = packed[a, _ALPHA]
+    u_a = packed[a, _U]
+    rho_a = packed[a, _RHO]
+    ax = 0.0
+    ay = 0.0
+    az = 0.0
+    du = 0.0
+    div = 0.0
+    cx = 0.0
+    cy = 0.0
+    cz = 0.0
+    vs = cs_a
+    for k in range(count[a]):
+        b = index[a, k]
+        dx = minimum_image(xa - packed[b, _X], length[0], periodic[0])
+        dy = minimum_image(ya - packed[b, _Y], length[1], periodic[1])
+        dz = minimum_image(za - packed[b, _Z], length[2], periodic[2])
+        r2 = dx * dx + dy * dy + dz * dz
+        hinv_b = packed[b, _HINV]
+        qa2 = r2 * hinv_a * hinv_a
+        qb2 = r2 * hinv_b * hinv_b
+        if qa2 >= r2max and qb2 >= r2max:
+            continue
+        r = math.sqrt(r2)
+        rinv = 1.0 / r
+        # kernel shapes vanish beyond the support: no branch on q needed
+        dW_a = gnorm_a * kernel_dshape(shape, r * hinv_a)
+        dW_b = packed[b, _GRADNORM] * kernel_dshape(shape, r * hinv_b)
+        m_b = packed[b, _M]
+        dvx = vxa - packed[b, _VX]
+        dvy = vya - packed[b, _VY]
+        dvz = vza - packed[b, _VZ]
+        vdotr = (dvx * dx + dvy * dy + dvz * dz) * rinv
+        # pressure
+        s, du_a = pressure_pair(form, form_a, packed[b, _FORM], dW_a, dW_b, P_a, packed[b, _P], rhoinv_a,
+                                packed[b, _RHOINV], vdotr)
+        du += du_a * m_b
+        # artificial viscosity (zero for receding pairs)
+        qa, qb = viscous_pair(vdotr, alpha_a, cs_a, packed[b, _ALPHA], packed[b, _CS], beta, ombar_a,
+                              packed[b, _OMBAR])
+        s += qa * dW_a + qb * dW_b
+        du += qa * dW_a * vdotr * m_b
+        # artificial conductivity
+        if conduct:
+            vsu = conductivity_signal(P_a, packed[b, _P], rho_a, packed[b, _RHO])
+            du += m_b * alpha_u * vsu * (u_a - packed[b, _U]) * 0.5 * (ombar_a * dW_a
+                                                                       + packed[b, _OMBAR] * dW_b)
+        s *= m_b * rinv
+        ax -= s * dx
+        ay -= s * dy
+        az -= s * dz
+        div += m_b * vdotr * dW_a
+        w = m_b * dW_a * rinv  # v_ab x grad_a W_ab(h_a), summed
+        cx += w * (dvy * dz - dvz * dy)
+        cy += w * (dvz * dx - dvx * dz)
+        cz += w * (dvx * dy - dvy * dx)
+        v = signal_speed(cs_a, packed[b, _CS], vdotr, beta)
+        vs = max(vs, v)
+    acc[a, 0] = ax
+    acc[a, 1] = ay
+    acc[a, 2] = az
+    dudt[a] = du if evolve_u else 0.0
+    divv[a] = -ombar_a * div
+    curlv[a] = ombar_a * math.sqrt(cx * cx + cy * cy + cz * cz)
+    vsig[a] = vs
 
 
 def packed_table(n: int) -> np.ndarray:

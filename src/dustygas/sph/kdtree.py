@@ -18,8 +18,12 @@ import numpy as np
 from numba import njit, prange
 
 from .pairs import candidate_buffers, gather_candidates, minimum_image, scan_candidates
+from .workshare import WORKERS, next_chunk
 
 __all__ = ["build_tree", "tree_search"]
+
+#: query leaves per chunk of the parallel search (about 100 particles)
+LEAF_CHUNK = 8
 
 
 @njit(cache=True)
@@ -165,18 +169,25 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
         if periodic[d]:
             inv_l[d] = 1.0 / length[d]
     leaves = np.flatnonzero(qchild == -1)
-    for il in prange(leaves.shape[0]):
-        leaf = leaves[il]
-        stack = np.empty(128, np.int64)
-        nodes = np.empty(64, np.int64)
-        m, nl = leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send,
-                                length, periodic, r2, nodes, stack)
-        if nl > nodes.shape[0]:
-            nodes = np.empty(nl, np.int64)
-            leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send,
-                            length, periodic, r2, nodes, stack)
-        px, py, pz, ph2, pid, d2 = candidate_buffers(m)
-        gather_candidates(nodes, nl, sstart, send, sorder, spos, sh, px, py, pz, ph2, pid)
-        for k in range(qstart[leaf], qend[leaf]):
-            scan_candidates(qorder[k], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
-                            index, count, overlap)
+    n_items = leaves.shape[0]
+    n_chunks = (n_items + LEAF_CHUNK - 1) // LEAF_CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for il in range(chunk * LEAF_CHUNK, min(n_items, (chunk + 1) * LEAF_CHUNK)):
+                leaf = leaves[il]
+                stack = np.empty(128, np.int64)
+                nodes = np.empty(64, np.int64)
+                m, nl = leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send,
+                                        length, periodic, r2, nodes, stack)
+                if nl > nodes.shape[0]:
+                    nodes = np.empty(nl, np.int64)
+                    leaves_in_reach(qlo[leaf], qhi[leaf], qhmax[leaf], slo, shi, shmax, schild, sstart, send,
+                                    length, periodic, r2, nodes, stack)
+                px, py, pz, ph2, pid, d2 = candidate_buffers(m)
+                gather_candidates(nodes, nl, sstart, send, sorder, spos, sh, px, py, pz, ph2, pid)
+                for k in range(qstart[leaf], qend[leaf]):
+                    scan_candidates(qorder[k], qpos, qh, m, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
+                                    index, count, overlap)
+            chunk = next_chunk(counter)

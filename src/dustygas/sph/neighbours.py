@@ -40,6 +40,7 @@ from numba import njit, prange
 from ..errors import SimulationError
 from .kdtree import build_tree, tree_search
 from .pairs import candidate_buffers, minimum_image, scan_candidates
+from .workshare import WORKERS, next_chunk
 
 __all__ = ["Box", "NeighbourList", "NeighbourFinder", "minimum_image"]
 
@@ -194,40 +195,52 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
     r2 = radius * radius
     ncells = nx * ny * nz
     nchunk = min(ncells, SEARCH_CHUNKS)
-    for t in prange(nchunk):
-        c0, c1 = t * ncells // nchunk, (t + 1) * ncells // nchunk
-        longest = 0  # one set of candidate buffers per chunk of cells: no allocation per cell
-        for c in range(c0, c1):
-            if qstart[c] != qstart[c + 1]:
-                longest = max(longest, _candidate_count(c, nx, ny, nz, periodic, sstart))
-        px, py, pz, ph2, pid, d2 = candidate_buffers(longest)
-        for c in range(c0, c1):
-            if qstart[c] == qstart[c + 1]:
-                continue
-            cx = c % nx
-            cy = (c // nx) % ny
-            cz = c // (nx * ny)
-            xlo, xhi = _range(cx, nx, periodic[0])
-            ylo, yhi = _range(cy, ny, periodic[1])
-            zlo, zhi = _range(cz, nz, periodic[2])
-            j = 0
-            for oz in range(zlo, zhi + 1):
-                kz, sz = _image_cell(cz + oz, nz, length[2])
-                for oy in range(ylo, yhi + 1):
-                    ky, sy = _image_cell(cy + oy, ny, length[1])
-                    for ox in range(xlo, xhi + 1):
-                        kx, sx = _image_cell(cx + ox, nx, length[0])
-                        k = (kz * ny + ky) * nx + kx
-                        for i in range(sstart[k], sstart[k + 1]):
-                            px[j] = spos[i, 0] + sx
-                            py[j] = spos[i, 1] + sy
-                            pz[j] = spos[i, 2] + sz
-                            ph2[j] = sh[i] * sh[i]
-                            pid[j] = sorder[i]
-                            j += 1
-            for iq in range(qstart[c], qstart[c + 1]):
-                scan_candidates(qorder[iq], qpos, qh, j, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
-                                index, count, overlap)
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        t = next_chunk(counter)
+        while t < nchunk:
+            _search_cells(t * ncells // nchunk, (t + 1) * ncells // nchunk, qpos, qh, qstart, qorder, spos, sh,
+                          sstart, sorder, nx, ny, nz, length, periodic, inv_l, r2, exclude_self, index, count,
+                          overlap)
+            t = next_chunk(counter)
+
+
+@njit(inline="always")
+def _search_cells(c0, c1, qpos, qh, qstart, qorder, spos, sh, sstart, sorder, nx, ny, nz, length, periodic, inv_l, r2,
+                  exclude_self, index, count, overlap):
+    """The rows of the queries in cells ``c0 .. c1 - 1`` (:func:`_search`)."""
+    longest = 0  # one set of candidate buffers per chunk of cells: no allocation per cell
+    for c in range(c0, c1):
+        if qstart[c] != qstart[c + 1]:
+            longest = max(longest, _candidate_count(c, nx, ny, nz, periodic, sstart))
+    px, py, pz, ph2, pid, d2 = candidate_buffers(longest)
+    for c in range(c0, c1):
+        if qstart[c] == qstart[c + 1]:
+            continue
+        cx = c % nx
+        cy = (c // nx) % ny
+        cz = c // (nx * ny)
+        xlo, xhi = _range(cx, nx, periodic[0])
+        ylo, yhi = _range(cy, ny, periodic[1])
+        zlo, zhi = _range(cz, nz, periodic[2])
+        j = 0
+        for oz in range(zlo, zhi + 1):
+            kz, sz = _image_cell(cz + oz, nz, length[2])
+            for oy in range(ylo, yhi + 1):
+                ky, sy = _image_cell(cy + oy, ny, length[1])
+                for ox in range(xlo, xhi + 1):
+                    kx, sx = _image_cell(cx + ox, nx, length[0])
+                    k = (kz * ny + ky) * nx + kx
+                    for i in range(sstart[k], sstart[k + 1]):
+                        px[j] = spos[i, 0] + sx
+                        py[j] = spos[i, 1] + sy
+                        pz[j] = spos[i, 2] + sz
+                        ph2[j] = sh[i] * sh[i]
+                        pid[j] = sorder[i]
+                        j += 1
+        for iq in range(qstart[c], qstart[c + 1]):
+            scan_candidates(qorder[iq], qpos, qh, j, px, py, pz, ph2, pid, d2, length, inv_l, r2, exclude_self,
+                            index, count, overlap)
 
 
 @njit(inline="always")

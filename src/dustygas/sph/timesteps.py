@@ -58,7 +58,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
@@ -70,7 +69,7 @@ from .block_state import BlockState
 from .density import H_NEEDS_NEIGHBOURS, H_NOT_CONVERGED
 from .dust.grain_size import GrainGrowth, enforce_minimum_size
 from .dust.two_fluid import TwoFluidOptions
-from .engine import PARALLEL_CHUNK, SPHOptions
+from .engine import SPHOptions
 from .eos import EquationOfState, pressure_sound_speed
 from .external import ExternalForces
 from .forces import FORCE_FORMS
@@ -471,20 +470,18 @@ class BlockStepEngine(BlockState, BlockPhysics):
     def timestep(self) -> float:
         """Length of the next block (planned at the end of the previous one)."""
         if not self.started:
-            with numba.parallel_chunksize(PARALLEL_CHUNK):
-                self._evaluate_all()
+            self._evaluate_all()
         return self.dt_block
 
     def advance(self, dt: float) -> None:
         """One block of length ``dt`` (the planned one, or shorter at the end of a run)."""
         if not dt > 0:
             raise SimulationError(f"invalid step {dt!r} at time={self.t:.6g}")
-        with numba.parallel_chunksize(PARALLEL_CHUNK):
-            if not self.started:
-                self._evaluate_all()
-            if abs(dt - self.dt_block) > 1e-12 * self.dt_block:
-                self._evaluate_all(dt)
-            self._advance(dt)
+        if not self.started:
+            self._evaluate_all()
+        if abs(dt - self.dt_block) > 1e-12 * self.dt_block:
+            self._evaluate_all(dt)
+        self._advance(dt)
 
     def _advance(self, dt: float) -> None:
         o = self.options

@@ -79,10 +79,12 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit, prange
 
 from ..kernels import kernel_dshape
 from ..neighbours import minimum_image
+from ..workshare import CHUNK, WORKERS, next_chunk
 
 __all__ = ["TERMINAL_VELOCITY", "FULL", "one_fluid_rates"]
 
@@ -104,117 +106,124 @@ def one_fluid_rates(pos, vel, mass, h, rho, omega, P, u, eps, sqrt_rho_eps, ts, 
     """
     n = pos.shape[0]
     full = model == FULL
-    for a in prange(n):
-        xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
-        hinv_a = 1.0 / h[a]
-        gnorm_a = norm * hinv_a ** (ndim + 1)
-        rho_a = rho[a]
-        eps_a = eps[a]
-        t_a = ts[a]
-        P_a = P[a]
-        u_a = u[a]
-        ombar_a = 1.0 / (omega[a] * rho_a)
-        Pfac_a = P_a * ombar_a / rho_a
-        dvx_a, dvy_a, dvz_a = dv[a, 0], dv[a, 1], dv[a, 2]
-        wfac_a = eps_a * (1.0 - eps_a) * ombar_a
-        fld = 0.0
-        du = 0.0
-        gin = 0.0
-        gins = 0.0
-        gout = 0.0
-        ax = 0.0
-        ay = 0.0
-        az = 0.0
-        px = 0.0
-        py = 0.0
-        pz = 0.0
-        vx = 0.0
-        vy = 0.0
-        vz = 0.0
-        for k in range(count[a]):
-            b = index[a, k]
-            dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
-            dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
-            dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
-            r = math.sqrt(dx * dx + dy * dy + dz * dz)
-            rinv = 1.0 / r
-            hinv_b = 1.0 / h[b]
-            dWa = gnorm_a * kernel_dshape(shape, r * hinv_a)
-            dWb = norm * hinv_b ** (ndim + 1) * kernel_dshape(shape, r * hinv_b)
-            if dWa == 0.0 and dWb == 0.0:
-                continue
-            m_b = mass[b]
-            rho_b = rho[b]
-            eps_b = eps[b]
-            if not full:
-                kfac = m_b / rho_b * 0.5 * (dWa + dWb) * rinv
-                dP = P_a - P[b]
-                if sqrt_variable:
-                    s_pair = -0.5 * sqrt_rho_eps[b] * kfac * (t_a / rho_a + ts[b] / rho_b) * dP
-                    fld += s_pair
-                    e = 2.0 * sqrt_rho_eps[a] / rho_a * s_pair
-                else:
-                    if upwind:
-                        base = (t_a + ts[b]) * dP * kfac
-                        e = -(eps_a if base > 0.0 else eps_b) * base / rho_a
+    n_items = n
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                xa, ya, za = pos[a, 0], pos[a, 1], pos[a, 2]
+                hinv_a = 1.0 / h[a]
+                gnorm_a = norm * hinv_a ** (ndim + 1)
+                rho_a = rho[a]
+                eps_a = eps[a]
+                t_a = ts[a]
+                P_a = P[a]
+                u_a = u[a]
+                ombar_a = 1.0 / (omega[a] * rho_a)
+                Pfac_a = P_a * ombar_a / rho_a
+                dvx_a, dvy_a, dvz_a = dv[a, 0], dv[a, 1], dv[a, 2]
+                wfac_a = eps_a * (1.0 - eps_a) * ombar_a
+                fld = 0.0
+                du = 0.0
+                gin = 0.0
+                gins = 0.0
+                gout = 0.0
+                ax = 0.0
+                ay = 0.0
+                az = 0.0
+                px = 0.0
+                py = 0.0
+                pz = 0.0
+                vx = 0.0
+                vy = 0.0
+                vz = 0.0
+                for k in range(count[a]):
+                    b = index[a, k]
+                    dx = minimum_image(xa - pos[b, 0], length[0], periodic[0])
+                    dy = minimum_image(ya - pos[b, 1], length[1], periodic[1])
+                    dz = minimum_image(za - pos[b, 2], length[2], periodic[2])
+                    r = math.sqrt(dx * dx + dy * dy + dz * dz)
+                    rinv = 1.0 / r
+                    hinv_b = 1.0 / h[b]
+                    dWa = gnorm_a * kernel_dshape(shape, r * hinv_a)
+                    dWb = norm * hinv_b ** (ndim + 1) * kernel_dshape(shape, r * hinv_b)
+                    if dWa == 0.0 and dWb == 0.0:
+                        continue
+                    m_b = mass[b]
+                    rho_b = rho[b]
+                    eps_b = eps[b]
+                    if not full:
+                        kfac = m_b / rho_b * 0.5 * (dWa + dWb) * rinv
+                        dP = P_a - P[b]
+                        if sqrt_variable:
+                            s_pair = -0.5 * sqrt_rho_eps[b] * kfac * (t_a / rho_a + ts[b] / rho_b) * dP
+                            fld += s_pair
+                            e = 2.0 * sqrt_rho_eps[a] / rho_a * s_pair
+                        else:
+                            if upwind:
+                                base = (t_a + ts[b]) * dP * kfac
+                                e = -(eps_a if base > 0.0 else eps_b) * base / rho_a
+                            else:
+                                e = -(eps_a * t_a + eps_b * ts[b]) * dP * kfac / rho_a
+                            fld += e
                     else:
-                        e = -(eps_a * t_a + eps_b * ts[b]) * dP * kfac / rho_a
-                    fld += e
-            else:
-                ombar_b = 1.0 / (omega[b] * rho_b)
-                # unit vector times kernel gradients: G_a = dWa r_hat, G_b = dWb r_hat
-                rx, ry, rz = dx * rinv, dy * rinv, dz * rinv
-                dvx_b, dvy_b, dvz_b = dv[b, 0], dv[b, 1], dv[b, 2]
-                proj_a = dvx_a * rx + dvy_a * ry + dvz_a * rz
-                proj_b = dvx_b * rx + dvy_b * ry + dvz_b * rz
-                g_a = (1.0 - eps_a) * ombar_a * proj_a * dWa
-                g_b = (1.0 - eps_b) * ombar_b * proj_b * dWb
-                if upwind:
-                    gsum = g_a + g_b
-                    e = -m_b * (eps_a if gsum > 0.0 else eps_b) * gsum
-                else:
-                    e = -m_b * (eps_a * g_a + eps_b * g_b)
-                fld += e
-                # momentum: -div(eps(1-eps) rho dv dv)/rho
-                ta = m_b * wfac_a * proj_a * dWa
-                tb = m_b * eps_b * (1.0 - eps_b) * ombar_b * proj_b * dWb
-                ax -= ta * dvx_a + tb * dvx_b
-                ay -= ta * dvy_a + tb * dvy_b
-                az -= ta * dvz_a + tb * dvz_b
-                # grad P / rho (symmetric form of the pressure force)
-                gp = m_b * (Pfac_a * dWa + P[b] * ombar_b / rho_b * dWb)
-                px += gp * rx
-                py += gp * ry
-                pz += gp * rz
-                # -(dv . grad) v and -grad(Q)/2
-                c1 = m_b * proj_a * dWa
-                c2 = 0.5 * m_b * (Q[a] - Q[b]) * dWa
-                vx += c1 * (vel[a, 0] - vel[b, 0]) + c2 * rx
-                vy += c1 * (vel[a, 1] - vel[b, 1]) + c2 * ry
-                vz += c1 * (vel[a, 2] - vel[b, 2]) + c2 * rz
+                        ombar_b = 1.0 / (omega[b] * rho_b)
+                        # unit vector times kernel gradients: G_a = dWa r_hat, G_b = dWb r_hat
+                        rx, ry, rz = dx * rinv, dy * rinv, dz * rinv
+                        dvx_b, dvy_b, dvz_b = dv[b, 0], dv[b, 1], dv[b, 2]
+                        proj_a = dvx_a * rx + dvy_a * ry + dvz_a * rz
+                        proj_b = dvx_b * rx + dvy_b * ry + dvz_b * rz
+                        g_a = (1.0 - eps_a) * ombar_a * proj_a * dWa
+                        g_b = (1.0 - eps_b) * ombar_b * proj_b * dWb
+                        if upwind:
+                            gsum = g_a + g_b
+                            e = -m_b * (eps_a if gsum > 0.0 else eps_b) * gsum
+                        else:
+                            e = -m_b * (eps_a * g_a + eps_b * g_b)
+                        fld += e
+                        # momentum: -div(eps(1-eps) rho dv dv)/rho
+                        ta = m_b * wfac_a * proj_a * dWa
+                        tb = m_b * eps_b * (1.0 - eps_b) * ombar_b * proj_b * dWb
+                        ax -= ta * dvx_a + tb * dvx_b
+                        ay -= ta * dvy_a + tb * dvy_b
+                        az -= ta * dvz_a + tb * dvz_b
+                        # grad P / rho (symmetric form of the pressure force)
+                        gp = m_b * (Pfac_a * dWa + P[b] * ombar_b / rho_b * dWb)
+                        px += gp * rx
+                        py += gp * ry
+                        pz += gp * rz
+                        # -(dv . grad) v and -grad(Q)/2
+                        c1 = m_b * proj_a * dWa
+                        c2 = 0.5 * m_b * (Q[a] - Q[b]) * dWa
+                        vx += c1 * (vel[a, 0] - vel[b, 0]) + c2 * rx
+                        vy += c1 * (vel[a, 1] - vel[b, 1]) + c2 * ry
+                        vz += c1 * (vel[a, 2] - vel[b, 2]) + c2 * rz
+                        if heat:
+                            du -= Pfac_a * m_b * dWa * (eps_a * proj_a - eps_b * proj_b)
+                    if heat:
+                        du += 0.5 * (u_a - u[b]) * e
+                    if e > 0.0:
+                        gin += e
+                        if track_size:
+                            gins += e * size[b]
+                    else:
+                        gout -= e
+                dfield[a] = fld
+                inflow[a] = gin
+                inflow_size[a] = gins
+                outflow[a] = gout
+                if full:
+                    acc[a, 0] += ax
+                    acc[a, 1] += ay
+                    acc[a, 2] += az
+                    inv1me = 1.0 / (1.0 - eps_a)
+                    ddv[a, 0] = px * inv1me + ombar_a * vx
+                    ddv[a, 1] = py * inv1me + ombar_a * vy
+                    ddv[a, 2] = pz * inv1me + ombar_a * vz
+                    if heat:
+                        du += eps_a * (1.0 - eps_a) * (dvx_a * dvx_a + dvy_a * dvy_a + dvz_a * dvz_a) / t_a
                 if heat:
-                    du -= Pfac_a * m_b * dWa * (eps_a * proj_a - eps_b * proj_b)
-            if heat:
-                du += 0.5 * (u_a - u[b]) * e
-            if e > 0.0:
-                gin += e
-                if track_size:
-                    gins += e * size[b]
-            else:
-                gout -= e
-        dfield[a] = fld
-        inflow[a] = gin
-        inflow_size[a] = gins
-        outflow[a] = gout
-        if full:
-            acc[a, 0] += ax
-            acc[a, 1] += ay
-            acc[a, 2] += az
-            inv1me = 1.0 / (1.0 - eps_a)
-            ddv[a, 0] = px * inv1me + ombar_a * vx
-            ddv[a, 1] = py * inv1me + ombar_a * vy
-            ddv[a, 2] = pz * inv1me + ombar_a * vz
-            if heat:
-                du += eps_a * (1.0 - eps_a) * (dvx_a * dvx_a + dvy_a * dvy_a + dvz_a * dvz_a) / t_a
-        if heat:
-            dudt[a] += du
+                    dudt[a] += du
+            chunk = next_chunk(counter)

@@ -40,7 +40,10 @@ other accelerations; the drag uses the step average of its exact solution,
 :math:`x = \\Delta t/t_{aj}`, which tends to the explicit :math:`w^*` for :math:`\\Delta t \\ll t_{aj}` and to
 the terminal drift :math:`\\Delta f\\,t_{aj}` for :math:`\\Delta t \\gg t_{aj}`, so no :math:`\\Delta t \\le t_s` limit applies.
 
-All loops gather per particle (no scatter, no atomics): deterministic for any thread count.
+All loops gather per particle (no scatter, no atomic sums): deterministic for any thread count. A
+neighbour's columns are read in place (``table[j, _X]``), never through a row view ``table[j]``: numba
+counts the references of a view's parent with an atomic add and subtract, one cache line shared by
+all threads (measured: see benchmarks/RESULTS.md, 2026-12-03).
 """
 
 from __future__ import annotations
@@ -52,6 +55,7 @@ from numba import njit, prange
 
 from ..kernels import kernel_dshape, kernel_shape
 from ..neighbours import minimum_image
+from ..workshare import CHUNK, WORKERS, next_chunk
 
 __all__ = ["pack", "velocity_gradient", "drag_pass", "drag_pair", "mc_limiter", "KERNEL_AVERAGE", "KERNEL_OWN",
            "KERNEL_OTHER"]
@@ -68,41 +72,47 @@ def pack(*columns) -> np.ndarray:
 def velocity_gradient(packed, h, rho, omega, index, count, shape, norm, ndim, length, periodic, grad):
     """:math:`(\\nabla\\mathbf v_a)_{kj} = \\partial_j v_k = -\\frac{1}{\\Omega_a\\rho_a}\\sum_b m_b (v_a - v_b)_k\\,\\partial_j W_{ab}(h_a)`,
     stored row-major in ``grad[a, 3 k + j]``; ``packed`` rows are ``(x, y, z, vx, vy, vz, m)`` (:func:`pack`)."""
-    for a in prange(packed.shape[0]):
-        hinv = 1.0 / h[a]
-        pa = packed[a]
-        xa, ya, za = pa[0], pa[1], pa[2]
-        vxa, vya, vza = pa[3], pa[4], pa[5]
-        g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
-        for kk in range(count[a]):
-            pb = packed[index[a, kk]]
-            dx = minimum_image(xa - pb[0], length[0], periodic[0])
-            dy = minimum_image(ya - pb[1], length[1], periodic[1])
-            dz = minimum_image(za - pb[2], length[2], periodic[2])
-            r = math.sqrt(dx * dx + dy * dy + dz * dz)
-            f = pb[6] * kernel_dshape(shape, r * hinv) / r
-            ux = (vxa - pb[3]) * f
-            uy = (vya - pb[4]) * f
-            uz = (vza - pb[5]) * f
-            g0 += ux * dx
-            g1 += ux * dy
-            g2 += ux * dz
-            g3 += uy * dx
-            g4 += uy * dy
-            g5 += uy * dz
-            g6 += uz * dx
-            g7 += uz * dy
-            g8 += uz * dz
-        c = -norm * hinv ** (ndim + 1) / (omega[a] * rho[a])
-        grad[a, 0] = c * g0
-        grad[a, 1] = c * g1
-        grad[a, 2] = c * g2
-        grad[a, 3] = c * g3
-        grad[a, 4] = c * g4
-        grad[a, 5] = c * g5
-        grad[a, 6] = c * g6
-        grad[a, 7] = c * g7
-        grad[a, 8] = c * g8
+    n_items = packed.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                hinv = 1.0 / h[a]
+                xa, ya, za = packed[a, 0], packed[a, 1], packed[a, 2]
+                vxa, vya, vza = packed[a, 3], packed[a, 4], packed[a, 5]
+                g0 = g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = 0.0
+                for kk in range(count[a]):
+                    b = index[a, kk]  # the neighbour's columns read in place (module docstring)
+                    dx = minimum_image(xa - packed[b, 0], length[0], periodic[0])
+                    dy = minimum_image(ya - packed[b, 1], length[1], periodic[1])
+                    dz = minimum_image(za - packed[b, 2], length[2], periodic[2])
+                    r = math.sqrt(dx * dx + dy * dy + dz * dz)
+                    f = packed[b, 6] * kernel_dshape(shape, r * hinv) / r
+                    ux = (vxa - packed[b, 3]) * f
+                    uy = (vya - packed[b, 4]) * f
+                    uz = (vza - packed[b, 5]) * f
+                    g0 += ux * dx
+                    g1 += ux * dy
+                    g2 += ux * dz
+                    g3 += uy * dx
+                    g4 += uy * dy
+                    g5 += uy * dz
+                    g6 += uz * dx
+                    g7 += uz * dy
+                    g8 += uz * dz
+                c = -norm * hinv ** (ndim + 1) / (omega[a] * rho[a])
+                grad[a, 0] = c * g0
+                grad[a, 1] = c * g1
+                grad[a, 2] = c * g2
+                grad[a, 3] = c * g3
+                grad[a, 4] = c * g4
+                grad[a, 5] = c * g5
+                grad[a, 6] = c * g6
+                grad[a, 7] = c * g7
+                grad[a, 8] = c * g8
+            chunk = next_chunk(counter)
 
 
 @njit(cache=True)
@@ -156,30 +166,36 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
     gas, 2: the other one) replaces the midpoint reconstruction by the gas velocity extrapolated to the
     dust particle with the gas's own gradient, :math:`w^* = w - \\sigma_{\\rm gas}`.
     """
-    for a in prange(table.shape[0]):
-        pa = table[a]
-        ax = 0.0
-        ay = 0.0
-        az = 0.0
-        du = 0.0
-        tm = math.inf
-        for kk in range(count[a]):
-            j = index[a, kk]
-            fx, fy, fz, dq, tpair = drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic,
-                                              c_const, projected, recon, limit, dt_implicit, heat, kernel_side,
-                                              gas_slope)
-            if tpair == math.inf:
-                continue
-            tm = min(tm, tpair)
-            ax += fx
-            ay += fy
-            az += fz
-            du += dq
-        acc[a, 0] = ax
-        acc[a, 1] = ay
-        acc[a, 2] = az
-        dudt[a] = du
-        tmin[a] = tm
+    n_items = table.shape[0]
+    n_chunks = (n_items + CHUNK - 1) // CHUNK
+    counter = np.zeros(1, np.int64)
+    for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
+        chunk = next_chunk(counter)
+        while chunk < n_chunks:
+            for a in range(chunk * CHUNK, min(n_items, (chunk + 1) * CHUNK)):
+                ax = 0.0
+                ay = 0.0
+                az = 0.0
+                du = 0.0
+                tm = math.inf
+                for kk in range(count[a]):
+                    j = index[a, kk]
+                    fx, fy, fz, dq, tpair = drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic,
+                                                      c_const, projected, recon, limit, dt_implicit, heat, kernel_side,
+                                                      gas_slope)
+                    if tpair == math.inf:
+                        continue
+                    tm = min(tm, tpair)
+                    ax += fx
+                    ay += fy
+                    az += fz
+                    du += dq
+                acc[a, 0] = ax
+                acc[a, 1] = ay
+                acc[a, 2] = az
+                dudt[a] = du
+                tmin[a] = tm
+            chunk = next_chunk(counter)
 
 
 @njit(inline="always")
@@ -189,19 +205,17 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
     it causes (if ``heat``) and the pair stopping time: ``(ax, ay, az, du, t_pair)``, with
     ``t_pair = inf`` for a pair that does not interact. Evaluated from either side it gives equal and
     opposite momentum changes (module docstring); arguments as :func:`drag_pass`."""
-    pa = table[a]
-    pj = otable[j]
-    dx = minimum_image(pj[_X] - pa[_X], length[0], periodic[0])
-    dy = minimum_image(pj[_Y] - pa[_Y], length[1], periodic[1])
-    dz = minimum_image(pj[_Z] - pa[_Z], length[2], periodic[2])
+    dx = minimum_image(otable[j, _X] - table[a, _X], length[0], periodic[0])
+    dy = minimum_image(otable[j, _Y] - table[a, _Y], length[1], periodic[1])
+    dz = minimum_image(otable[j, _Z] - table[a, _Z], length[2], periodic[2])
     r2 = dx * dx + dy * dy + dz * dz
     if r2 == 0.0:
         return 0.0, 0.0, 0.0, 0.0, math.inf  # coincident particles: D = 0 and no direction
     r = math.sqrt(r2)
     rinv = 1.0 / r
     rx, ry, rz = dx * rinv, dy * rinv, dz * rinv
-    qa = r * pa[_HINV]
-    qj = r * pj[_HINV]
+    qa = r * table[a, _HINV]
+    qj = r * otable[j, _HINV]
     fa = kernel_shape(shape, qa)[0]
     fj = kernel_shape(shape, qj)[0]
     if kernel_side == KERNEL_OWN:
@@ -211,15 +225,15 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
     if fa == 0.0 and fj == 0.0:
         return 0.0, 0.0, 0.0, 0.0, math.inf
     half = 0.5 if kernel_side == KERNEL_AVERAGE else 1.0
-    rho_sum = pa[_RHO] + pj[_RHO]
-    kappa = pa[_K] * pj[_K] + c_const / rho_sum
+    rho_sum = table[a, _RHO] + otable[j, _RHO]
+    kappa = table[a, _K] * otable[j, _K] + c_const / rho_sum
     tpair = 1.0 / (rho_sum * kappa)
-    wx = pj[_VX] - pa[_VX]
-    wy = pj[_VY] - pa[_VY]
-    wz = pj[_VZ] - pa[_VZ]
+    wx = otable[j, _VX] - table[a, _VX]
+    wy = otable[j, _VY] - table[a, _VY]
+    wz = otable[j, _VZ] - table[a, _VZ]
     du = 0.0
     if projected:
-        weight = float(ndim) * half * (qa * qa * fa * pa[_WN] + qj * qj * fj * pj[_WN])
+        weight = float(ndim) * half * (qa * qa * fa * table[a, _WN] + qj * qj * fj * otable[j, _WN])
         w = wx * rx + wy * ry + wz * rz
         ws = w
         if recon:
@@ -232,14 +246,15 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
             else:
                 ws = w - (mc_limiter(sa, sj) if limit else 0.5 * (sa + sj))
         if dt_implicit > 0.0:
-            df = (pj[_FX] - pa[_FX]) * rx + (pj[_FY] - pa[_FY]) * ry + (pj[_FZ] - pa[_FZ]) * rz
+            df = ((otable[j, _FX] - table[a, _FX]) * rx + (otable[j, _FY] - table[a, _FY]) * ry
+                  + (otable[j, _FZ] - table[a, _FZ]) * rz)
             ph = _phi(dt_implicit / tpair)
             ws = ws * ph + df * tpair * (1.0 - ph)
-        f = pj[_M] * kappa * ws * weight
+        f = otable[j, _M] * kappa * ws * weight
         if heat:
             du = f * w
         return f * rx, f * ry, f * rz, du, tpair
-    weight = half * (fa * pa[_WN] + fj * pj[_WN])
+    weight = half * (fa * table[a, _WN] + fj * otable[j, _WN])
     wsx, wsy, wsz = wx, wy, wz
     if recon:
         wsx -= _component_slope(grad, ograd, a, j, 0, r, rx, ry, rz, limit, gas_slope)
@@ -248,10 +263,10 @@ def drag_pair(table, grad, otable, ograd, a, j, shape, ndim, length, periodic, c
     if dt_implicit > 0.0:
         ph = _phi(dt_implicit / tpair)
         c2 = tpair * (1.0 - ph)
-        wsx = wsx * ph + (pj[_FX] - pa[_FX]) * c2
-        wsy = wsy * ph + (pj[_FY] - pa[_FY]) * c2
-        wsz = wsz * ph + (pj[_FZ] - pa[_FZ]) * c2
-    f = pj[_M] * kappa * weight
+        wsx = wsx * ph + (otable[j, _FX] - table[a, _FX]) * c2
+        wsy = wsy * ph + (otable[j, _FY] - table[a, _FY]) * c2
+        wsz = wsz * ph + (otable[j, _FZ] - table[a, _FZ]) * c2
+    f = otable[j, _M] * kappa * weight
     if heat:
         du = f * (wsx * wx + wsy * wy + wsz * wz)
     return f * wsx, f * wsy, f * wsz, du, tpair
