@@ -115,6 +115,7 @@ def _locator_class():
 
         def __init__(self, inner, py_file: Path):
             self._inner = inner
+            self._py_file = str(py_file)  # numba's warning for a kernel it cannot cache reads it
             self._stamp = source_stamp(py_file)
 
         def ensure_cache_path(self) -> None:

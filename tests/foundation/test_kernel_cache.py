@@ -99,3 +99,31 @@ def test_every_engine_kernel_stamp_covers_the_files_it_inlines(tmp_path):
         after = _stamp_module(root)  # a fresh process would read the files afresh
         assert after.source_stamp(root / kernel) != stamps[kernel], (kernel, inlined)
         stamps = {k: after.source_stamp(root / k) for k, _ in CROSS_FILE}
+
+
+UNCACHEABLE = '''
+import ctypes
+from numba import njit
+
+_abs = ctypes.CDLL(None).abs
+_abs.restype, _abs.argtypes = ctypes.c_int, [ctypes.c_int]
+
+
+@njit(cache=True)
+def absolute(x):
+    return _abs(x)
+'''
+
+
+def test_a_kernel_numba_cannot_cache_warns_and_runs(tmp_path):
+    """A kernel numba cannot cache (it holds a ctypes pointer, a dynamic global) inside the package
+    gets numba's own warning, not an AttributeError from the dustygas locator; and |-5| = 5."""
+    shutil.copytree(SRC, tmp_path / "dustygas", ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp_path / "dustygas" / "_uncacheable_probe.py").write_text(UNCACHEABLE)
+    probe = ("import warnings, dustygas\nfrom dustygas._uncacheable_probe import absolute\n"
+             "with warnings.catch_warnings(record=True) as w:\n    warnings.simplefilter('always')\n"
+             "    print(absolute(-5), any('Cannot cache' in str(x.message) for x in w))\n")
+    proc = subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, env=_env(tmp_path), capture_output=True,
+                          text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["5", "True"]
