@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import os
 import re
+import tempfile
 import time
 from pathlib import Path
 from typing import Any, Mapping
@@ -84,9 +85,8 @@ def _check_creatable(p: Path) -> None:
     first = p  # access() trusts the permission bits; /proc or a read-only mount refuse mkdir
     while first.parent != ancestor:
         first = first.parent
-    try:
-        first.mkdir()
-        first.rmdir()
+    try:  # a uniquely named probe: MPI ranks check the same path at the same moment
+        os.rmdir(tempfile.mkdtemp(prefix=f".{first.name}.probe-", dir=ancestor))
     except OSError as exc:
         raise UserError(f"output path {_short(p)}: cannot create {_short(first)} ({exc.strerror})") from None
 
