@@ -32,7 +32,7 @@ from dustygas.particles import ParticleGridEngine, ParticleStore
 from dustygas.particles.gravity import SelfGravity, gravity_boundaries
 from dustygas.particles.params import lattice_positions
 
-from foundation._cli import cli
+from foundation._cli import cli_in_process
 
 
 def random_box(gravity: bool, boundary_z: str, seed: int = 3) -> ParticleGridEngine:
@@ -113,7 +113,7 @@ def test_gathered_acceleration_of_a_density_wave():
     (["--set", "gravity.t_on=1000"], "gravity.t_on = 1000: the run ends before"),
 ])
 def test_bad_gravity_input_one_line_exit_2(tmp_path, args, fragment):
-    res = cli("run", "si3d-selfgravity", *args, "-o", "out", cwd=tmp_path)
+    res = cli_in_process("run", "si3d-selfgravity", *args, "-o", "out", cwd=tmp_path)
     assert res.returncode == 2, res.stderr
     assert fragment in res.stderr and res.stderr.count("\n") == 1, res.stderr
     assert not (tmp_path / "out").exists()

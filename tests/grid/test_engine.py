@@ -1,10 +1,5 @@
 """Engine plumbing: restarts, thread-count independence, the particle hook, geometry, errors."""
 
-import os
-import subprocess
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
@@ -14,10 +9,9 @@ from dustygas.grid import GridEngine, Mesh
 
 from _runs import assert_runs_identical, run_outputs
 from _threads import assert_identical, results_at_threads
+from foundation._cli import cli_in_process
 
 from ._helpers import run_to
-
-SRC = Path(__file__).resolve().parents[2] / "src"
 
 
 @pytest.mark.parametrize("problem, extra", [
@@ -173,9 +167,7 @@ def test_bad_setup_is_a_one_line_error(kwargs, message):
     (["shocktube", "--set", "scheme.riemann=roe"], "scheme.riemann"),
 ])
 def test_cli_refuses_bad_input_without_writing(tmp_path, args, message):
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")]))
-    proc = subprocess.run([sys.executable, "-m", "dustygas", "run", *args, "-o", "out"], cwd=tmp_path, env=env,
-                          capture_output=True, text=True, timeout=120)
+    proc = cli_in_process("run", *args, "-o", "out", cwd=tmp_path)
     assert proc.returncode == 2
     assert message in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "out").exists()

@@ -10,7 +10,7 @@ import pytest
 from dustygas.linear import StreamingParams, operator_matrix
 from dustygas.linear.sweep_run import sweep
 
-from foundation._cli import cli
+from foundation._cli import cli, cli_in_process
 
 
 def _one_line_error(proc, fragment):
@@ -72,7 +72,7 @@ def test_mode_help_documents_json_keys(tmp_path):
     (["--taus", "0.1", "--kx", "30", "--kz", "30"], "--mu is required"),
 ])
 def test_mode_bad_input_is_one_line_exit_2(tmp_path, args, fragment):
-    _one_line_error(cli("linear", "mode", *args, cwd=tmp_path), fragment)
+    _one_line_error(cli_in_process("linear", "mode", *args, cwd=tmp_path), fragment)
 
 
 def test_map_writes_hdf5_json_png(tmp_path):

@@ -7,7 +7,7 @@ from dustygas.errors import SetupError
 from dustygas.grid import GridEngine, Mesh
 from dustygas.particles import ParticleGridEngine, ParticleStore, VerticalGravity
 
-from foundation._cli import cli
+from foundation._cli import cli_in_process
 
 
 @pytest.mark.parametrize("args, fragment", [
@@ -23,7 +23,7 @@ from foundation._cli import cli
     (["si3d", "--set", "particles.boundary_z=shear-periodic"], "particles.boundary_z = 'shear-periodic'"),
 ])
 def test_bad_configuration_one_line_exit_2(tmp_path, args, fragment):
-    res = cli("run", *args, "-o", "out", cwd=tmp_path)
+    res = cli_in_process("run", *args, "-o", "out", cwd=tmp_path)
     assert res.returncode == 2, res.stderr
     assert fragment in res.stderr and res.stderr.count("\n") == 1, res.stderr
     assert not (tmp_path / "out").exists()

@@ -26,7 +26,6 @@ import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy import optimize, special
 
 __all__ = ["cumulative_number", "upper_incomplete_gamma", "MassFunctionFit", "fit_power_law",
            "fit_truncated_power_law", "fit_mass_function", "sample_power_law"]
@@ -51,6 +50,8 @@ def upper_incomplete_gamma(s: float, x: float) -> float:
     >>> round(upper_incomplete_gamma(-0.5, 1.0), 12)  # 2 (e^-1 - sqrt(pi) erfc(1))
     0.178147711782
     """
+    from scipy import special  # imported here: scipy.special costs every process 0.15 s at start-up
+
     if s > 0:
         return float(special.gammaincc(s, x) * special.gamma(s))
     if s == 0:
@@ -140,6 +141,8 @@ def _truncated_nll(theta, logs_sum, m_sum, n, m_min):
 
 
 def _truncated_mle(m: np.ndarray, m_min: float, start: tuple[float, float]) -> tuple[float, float, float]:
+    from scipy import optimize  # imported here: scipy.optimize costs every process 0.2 s at start-up
+
     logs_sum, m_sum, n = float(np.log(m).sum()), float(m.sum()), m.size
     best = optimize.minimize(_truncated_nll, np.array(start), args=(logs_sum, m_sum, n, m_min), method="Nelder-Mead",
                              options={"xatol": 1e-8, "fatol": 1e-10, "maxiter": 4000})

@@ -44,7 +44,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import integrate
 
 from ..errors import UserError
 from ..physics import nsh_velocities_moments, nsh_velocities_multi
@@ -116,6 +115,8 @@ class PowerLawSizes:
         def f(x, power):
             t = math.exp(x)
             return float(self.density(t, lo, hi)) * t * t**power / (1.0 + t * t)
+
+        from scipy import integrate  # imported here: scipy.integrate costs every process 0.2 s at start-up
 
         kw = dict(limit=200, epsabs=0.0, epsrel=1e-13)
         a = integrate.quad(f, math.log(lo), math.log(hi), args=(0,), **kw)[0]

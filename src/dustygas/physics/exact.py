@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.linalg import expm
 
 __all__ = ["sound_wave", "dusty_box", "dusty_wave_matrix", "dusty_wave", "dust_diffusion", "dusty_column_density"]
 
@@ -119,6 +118,8 @@ def dusty_wave(x: ArrayLike, t: float, *, amplitude: float, K: float, cs: float 
     """
     k = 2.0 * np.pi / wavelength
     c0 = amplitude * np.array([rho_gas, rho_dust, cs, cs], dtype=complex)
+    from scipy.linalg import expm  # imported here: scipy.linalg costs every process 0.25 s
+
     c = expm(dusty_wave_matrix(k, K=K, cs=cs, rho_gas=rho_gas, rho_dust=rho_dust) * t) @ c0
     phase = np.exp(1j * k * (_f(x) - x0))
     dens_g, dens_d, vg, vd = (np.imag(ci * phase) for ci in c)

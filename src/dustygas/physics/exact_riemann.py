@@ -34,7 +34,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 __all__ = ["RiemannSolution"]
 
@@ -85,6 +84,8 @@ class RiemannSolution:
         hi = max(p_left, p_right)
         while residual(hi) < 0:
             hi *= 2.0
+        from scipy.optimize import brentq  # imported here: scipy.optimize costs every process 0.2 s
+
         self.p_star = ps = brentq(residual, 1e-14 * hi, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=500)
         self.u_star = us = 0.5 * (u_left + u_right) + 0.5 * (f(ps, rho_right, p_right, cr) - f(ps, rho_left, p_left, cl))
         gm = (g - 1.0) / (g + 1.0)

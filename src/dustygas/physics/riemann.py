@@ -27,7 +27,6 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 __all__ = ["IsothermalRiemannSolution", "isothermal_star_state", "isothermal_riemann"]
 
@@ -64,6 +63,8 @@ def isothermal_star_state(rho_l: float, u_l: float, rho_r: float, u_r: float, cs
     elif f(hi) == 0.0:
         rho = math.exp(hi)
     else:
+        from scipy.optimize import brentq  # imported here: scipy.optimize costs every process 0.2 s
+
         rho = math.exp(brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
     u = 0.5 * (u_l - cs * _g(rho, rho_l) + u_r + cs * _g(rho, rho_r))
     return rho, u

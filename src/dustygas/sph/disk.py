@@ -36,7 +36,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ndtri
 
 from ..errors import SetupError
 from ..physics.disk import (azimuthal_drift_velocity, eta_armitage, keplerian_angular_velocity, keplerian_velocity,
@@ -150,6 +149,8 @@ class DiskModel:
             a, b = self.r_in ** (2.0 - self.p), self.r_out ** (2.0 - self.p)
             R = (a + u * (b - a)) ** (1.0 / (2.0 - self.p))
         phi = 2.0 * np.pi * np.mod(0.5 + i / _PLASTIC, 1.0)
+        from scipy.special import ndtri  # imported here: scipy.special costs every process 0.15 s at start-up
+
         z = self.scale_height(R) * ndtri(np.mod(0.5 + i / _PLASTIC**2, 1.0))
         return np.stack([R * np.cos(phi), R * np.sin(phi), z], axis=1)
 

@@ -11,7 +11,6 @@ import math
 
 import numba
 import numpy as np
-from scipy import fft
 
 from ...errors import SetupError
 from .isolated import isolated_green_transform
@@ -155,6 +154,8 @@ class PoissonSolver:
         Fourier modes). Under vacuum z, ``layers = (k0, k1)`` restricts the work to the layers
         ``k0 .. k1-1``, which must hold all the mass: ``phi`` then covers ``k0 - gz .. k1 + gz - 1``.
         """
+        from scipy import fft  # imported here: scipy.fft costs every process 0.3 s at start-up
+
         rho = self._check(rho)
         (nx, ny, nz), (gx, gy, gz) = self.shape, self.ghosts
         if layers is not None:
@@ -227,6 +228,8 @@ class PoissonSolver:
 
     def _shift_y(self, columns: np.ndarray, shift: float, workers: int) -> np.ndarray:
         """``columns(y + shift)`` by the Fourier shift theorem (they hold no Nyquist mode)."""
+        from scipy import fft  # imported here: scipy.fft costs every process 0.3 s at start-up
+
         ny = self.shape[1]
         c = fft.rfft(columns, axis=1, workers=workers)
         c[:, :self._my] *= np.exp(1j * self._ky * shift)[None, :, None]
@@ -234,6 +237,8 @@ class PoissonSolver:
         return fft.irfft(c, n=ny, axis=1, workers=workers)
 
     def _isolated(self, rho: np.ndarray) -> np.ndarray:
+        from scipy import fft  # imported here: scipy.fft costs every process 0.3 s at start-up
+
         (nx, ny, nz), (gx, gy, gz) = self.shape, self.ghosts
         w = self._workers()
         pad = np.zeros(self._doubled)
