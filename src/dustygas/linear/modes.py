@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike
 from ..errors import UserError
 from ..physics import nsh_velocities_multi
 from .eigensolver import hessenberg_eigvals
-from .operator import DRAG_MODELS, StreamingParams, drag_code, fill_operator, operator_matrix, resolve_vz
+from .operator import DRAG_MODELS, StreamingParams, drag_code, fill_operator, kernel_array, operator_matrix, resolve_vz
 
 __all__ = ["Mode", "Eigenmodes", "eigenmodes", "fastest_mode", "growth_rate"]
 
@@ -264,9 +264,10 @@ def growth_rate(
     s = np.empty(npts)
     f = np.empty(npts)
     ok = np.empty(npts, dtype=np.bool_)
-    _growth_kernel(KX, KY, KZ, CS, np.ascontiguousarray(eq.gas_vx), np.ascontiguousarray(eq.gas_vy), T, M,
-                   np.ascontiguousarray(eq.dust_vx), np.ascontiguousarray(eq.dust_vy), np.ascontiguousarray(VZ),
-                   gamma, beta, s, f, ok)
+    # writable C arrays whatever the caller's broadcasting left read-only: one compiled signature
+    # instead of up to nine (each 4-8 CPU-s of compilation on a fresh cache)
+    args = (kernel_array(a) for a in (KX, KY, KZ, CS, eq.gas_vx, eq.gas_vy, T, M, eq.dust_vx, eq.dust_vy, VZ))
+    _growth_kernel(*args, gamma, beta, s, f, ok)
     for i in np.flatnonzero(~ok):
         p = StreamingParams(taus=tuple(T[i]), mu=tuple(M[i]), kx=KX[i], kz=KZ[i], ky=KY[i], Pi=Pi_f[i],
                             drag=drag, vz=tuple(VZ[i]))

@@ -403,10 +403,16 @@ def _background_arrays(p: StreamingParams):
     return (
         float(eq.gas_vx),
         float(eq.gas_vy),
-        np.ascontiguousarray(eq.dust_vx, dtype=np.float64),
-        np.ascontiguousarray(eq.dust_vy, dtype=np.float64),
-        np.ascontiguousarray(p.vz_array, dtype=np.float64),
+        kernel_array(eq.dust_vx),
+        kernel_array(eq.dust_vy),
+        kernel_array(p.vz_array),
     )
+
+
+def kernel_array(a) -> np.ndarray:
+    """``a`` as a writable C-contiguous float64 array (a copy only if it is not one): kernels get one
+    compiled signature, not one per combination of read-only inputs (2 CPU-s each for fill_operator)."""
+    return np.require(a, np.float64, ("C", "W"))
 
 
 def operator_matrix(p: StreamingParams) -> np.ndarray:
@@ -415,5 +421,6 @@ def operator_matrix(p: StreamingParams) -> np.ndarray:
     gamma, beta = DRAG_MODELS[p.drag]
     L = np.zeros((p.size, p.size), dtype=np.complex128)
     G = np.zeros((3, 3 + 4 * p.nspecies), dtype=np.complex128)
-    fill_operator(L, G, p.kx, p.ky, p.kz, p.cs, Ux, Uy, p.taus_array, p.mu_array, Vx, Vy, Vz, gamma, beta)
+    fill_operator(L, G, p.kx, p.ky, p.kz, p.cs, Ux, Uy, kernel_array(p.taus_array), kernel_array(p.mu_array), Vx, Vy,
+                  Vz, gamma, beta)
     return L

@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import UserError
 from ..physics import nsh_velocities_moments, nsh_velocities_multi
-from .operator import DRAG_MODELS, StreamingParams, drag_code, fill_operator
+from .operator import DRAG_MODELS, StreamingParams, drag_code, fill_operator, kernel_array
 
 __all__ = ["PowerLawSizes", "RULES", "species", "fastest_growth", "distribution_growth"]
 
@@ -183,9 +183,8 @@ def fastest_growth(*, taus: ArrayLike, mu: ArrayLike, kx: float, kz: float, Pi: 
     gamma, beta = DRAG_MODELS[list(DRAG_MODELS)[drag_code(drag)]]
     L = np.zeros((p.size, p.size), dtype=np.complex128)
     G = np.zeros((3, 3 + 4 * p.nspecies), dtype=np.complex128)
-    fill_operator(L, G, p.kx, 0.0, p.kz, p.cs, float(eq.gas_vx), float(eq.gas_vy), T, M,
-                  np.ascontiguousarray(eq.dust_vx, dtype=np.float64), np.ascontiguousarray(eq.dust_vy, dtype=np.float64),
-                  np.zeros(p.nspecies), gamma, beta)
+    fill_operator(L, G, p.kx, 0.0, p.kz, p.cs, float(eq.gas_vx), float(eq.gas_vy), kernel_array(T), kernel_array(M),
+                  kernel_array(eq.dust_vx), kernel_array(eq.dust_vy), np.zeros(p.nspecies), gamma, beta)
     return _fastest(L)
 
 
