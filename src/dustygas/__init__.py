@@ -12,6 +12,10 @@ The public API is :mod:`dustygas.api`, re-exported here (``import dustygas as dg
   package :mod:`dustygas.reproduce` of figure functions).
 """
 
+from ._launch import hold_if_launched as _hold_if_launched
+
+_hold_if_launched()  # an MPI rank: before numpy starts the BLAS threads (see dustygas._launch)
+
 from ._numba_cache import install as _install_numba_cache_guard
 from ._version import __version__
 

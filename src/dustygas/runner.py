@@ -65,7 +65,7 @@ from ._version import __version__
 from .config import Config, Param, dump_toml
 from .errors import EXIT_WALLTIME, OutputError, SimulationError, UserError
 from .io.rundir import RunDirectory
-from .parallel.comm import agreed, launched_under_mpi
+from .parallel.comm import STOP_SIGNALS, agreed, launched_under_mpi
 from .threads import ThreadControl
 
 __all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine", "config_text", "CHECKPOINT_ATTRS"]
@@ -143,7 +143,9 @@ class _LoopState:
 
 
 class _StopFlag:
-    """Turns SIGTERM/SIGINT into a flag the loop checks after every step."""
+    """Turns SIGTERM/SIGINT into a flag the loop checks after every step (an MPI rank holds the
+    signals blocked, :mod:`dustygas._launch`, and :meth:`take_held` takes them at the step's
+    agreement point)."""
 
     def __init__(self) -> None:
         self.signum = 0
@@ -161,6 +163,15 @@ class _StopFlag:
         if self.signum:  # second signal: give up immediately
             raise KeyboardInterrupt
         self.signum = signum
+
+    def take_held(self) -> int:
+        """Take the stop signals held pending in this thread (an MPI rank blocks them:
+        :func:`~dustygas.parallel.comm.hold_stop_signals`) as if they had arrived now; returns
+        :attr:`signum`."""
+        for sig in sorted(signal.sigpending() & STOP_SIGNALS):
+            signal.sigtimedwait([sig], 0)
+            self._handler(int(sig), None)
+        return self.signum
 
     def __exit__(self, *exc: Any) -> None:
         for sig, handler in self._old.items():
@@ -378,7 +389,7 @@ class RunLoop:
                     wall_ckpt = run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
                     out_of_time = run.walltime > 0 and (now - start_wall) + 2 * step_wall >= run.walltime
                     if agree is not None:  # every rank takes the same wall-clock and signal decisions
-                        stop.signum, wall_ckpt, out_of_time = agree((stop.signum, wall_ckpt, out_of_time))
+                        stop.signum, wall_ckpt, out_of_time = agree((stop.take_held(), wall_ckpt, out_of_time))
                     want_ckpt = eng.t >= s.next_checkpoint or wall_ckpt
                     s.next_checkpoint = _next_time(s.next_checkpoint, run.dt_checkpoint, eng.t)
                     if want_ckpt and eng.t < tlim * (1 - 1e-14):

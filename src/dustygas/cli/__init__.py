@@ -68,6 +68,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         if not getattr(args, "command", None):
             parser.print_help()
             return 0
+        if args.command != "run":  # an MPI rank holds its stop signals for the run loop only (dustygas._launch)
+            from .._launch import release_stop_signals
+
+            release_stop_signals()
         return int(args._module.main(args) or 0)
     except UserError as exc:
         _say(f"dustygas: error: {exc}")

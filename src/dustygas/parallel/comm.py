@@ -7,29 +7,10 @@ so a one-process run never loads :mod:`mpi4py` (nor the MPI library behind it).
 
 from __future__ import annotations
 
-import os
+from .._launch import STOP_SIGNALS, hold_stop_signals, rank_and_size
 
-__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer", "check_ranks"]
-
-#: (rank variable, size variable) of the launchers we know
-_LAUNCHER_VARIABLES = (
-    ("PMI_RANK", "PMI_SIZE"),  # MPICH Hydra, Intel MPI
-    ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),  # Open MPI
-    ("PMIX_RANK", "PMIX_SIZE"),
-)
-
-
-def rank_and_size() -> tuple[int, int]:
-    """``(rank, size)`` from the launcher's environment; ``(0, 1)`` for a plain process.
-
-    >>> import os
-    >>> rank_and_size() if "PMI_RANK" not in os.environ else (0, 1)
-    (0, 1)
-    """
-    for rank_var, size_var in _LAUNCHER_VARIABLES:
-        if rank_var in os.environ and size_var in os.environ:
-            return int(os.environ[rank_var]), int(os.environ[size_var])
-    return 0, 1
+__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer", "check_ranks", "STOP_SIGNALS",
+           "hold_stop_signals"]
 
 
 def launched_under_mpi() -> bool:
@@ -38,7 +19,8 @@ def launched_under_mpi() -> bool:
 
 
 def world():
-    """``MPI.COMM_WORLD`` (imports :mod:`mpi4py` on the first call)."""
+    """``MPI.COMM_WORLD`` (imports :mod:`mpi4py` on the first call). A rank holds its stop
+    signals from ``import dustygas`` on (:mod:`dustygas._launch`)."""
     from mpi4py import MPI
 
     return MPI.COMM_WORLD
