@@ -1,14 +1,13 @@
 """The particle–gas engine on 2, 3 and 4 MPI ranks gives the serial run's files.
 
 ``mpiexec -n N python -m dustygas run`` of si-linA (2D x-z, periodic, 32², one particle per cell)
-and si3d (8 x 8 x 16, a settled layer with outflow z faces, uneven z blocks on 3 and 4 ranks)
-against the same run in one process (``-n 1``): every snapshot array (gas, every particle
-array, the dust density) is identical bit for bit, and so is every history column but the
-budgets summed over blocks (the particle terms' impulse, the gas's radial mass and y-momentum
-budgets), which agree to round-off: measured <= 7e-15 of the column's largest value (on the
-nearly cancelling z impulse of si3d; <= 3e-16 elsewhere), asserted to 5e-14. The mass and
-momentum lost through the z faces are added up by the end blocks alone, as in one process,
-also after a restart on another rank count: bit for bit. On the ranks' run
+and si3d (8 x 8 x 16, a settled layer with outflow z faces, uneven z blocks on 3 and
+4 ranks) against the same run in one process (``-n 1``): every snapshot array (gas, every
+particle array, the dust density) and every history column is identical bit for bit -- the
+budgets too (the particle and gas terms' impulse, the gas's radial mass, y-momentum and z-face
+budgets, the particles' losses): each is a running total per row of cells held by one block
+and summed in a fixed order, and the checkpoint holds the rows, so a restart on another rank
+count is bit for bit as well. On the ranks' run
 the budgets hold to the serial tests' tolerances (``tests/particles/test_conservation.py``):
 mass (with what left through the open faces) to 1e-13 (periodic) and 1e-12, the z momentum
 of the unforced periodic box to 1e-12 of ``(M_gas + M_dust) η v_K``.
@@ -27,8 +26,9 @@ import pytest
 
 from _runs import run_outputs
 
+#: the budget columns of the runs below (every one must be there: the test is about them)
 BUDGETS = {"momentum_y_source", "radial_boundary_mass", "particle_terms_impulse_x", "particle_terms_impulse_y",
-           "particle_terms_impulse_z", "gas_terms_impulse_x", "gas_terms_impulse_y", "gas_terms_impulse_z"}
+           "particle_terms_impulse_z"}
 
 LINA_BOX = ["si-linA", "--set", "grid.nx=32", "--set", "grid.nz=32"]
 LINA = LINA_BOX + ["--set", "run.max_cycles=30", "--set", "run.dt_history=0", "--set", "run.dt_snapshot=0.001"]
@@ -42,18 +42,15 @@ def launch(mpirun, n, args, out, cwd):
     return proc
 
 
-def assert_same_run(ranks: dict, serial: dict) -> None:
-    """Snapshots bit for bit; history bit for bit but the block-summed budgets (module doc)."""
+def assert_same_run(ranks: dict, serial: dict, budgets=BUDGETS) -> None:
+    """Snapshots and history bit for bit, the ``budgets`` columns among them (module doc)."""
     assert ranks.keys() == serial.keys() and len(serial) >= 3
+    assert budgets <= serial["history"][0].keys()
     for key in serial:
         (a, _), (b, _) = serial[key], ranks[key]
         assert a.keys() == b.keys(), key
         for name in a:
-            x, y = np.asarray(a[name]), np.asarray(b[name])
-            if key == "history" and name in BUDGETS:
-                np.testing.assert_allclose(y, x, rtol=0, atol=5e-14 * np.max(np.abs(x)), err_msg=name)
-            else:
-                np.testing.assert_array_equal(y, x, err_msg=f"{key}:{name}")
+            np.testing.assert_array_equal(np.asarray(b[name]), np.asarray(a[name]), err_msg=f"{key}:{name}")
 
 
 @pytest.fixture(scope="module")
@@ -63,10 +60,11 @@ def lina_serial(mpirun, tmp_path_factory):
     return cwd
 
 
-@pytest.mark.parametrize("nranks", [2, 4])
+@pytest.mark.parametrize("nranks", [2, pytest.param(3, marks=pytest.mark.slow), 4])
 def test_si_lina_on_ranks_is_the_serial_run(nranks, mpirun, lina_serial):
     proc = launch(mpirun, nranks, LINA, f"n{nranks}", lina_serial)
-    assert f"particles per rank: {' '.join([str(1024 // nranks)] * nranks)} (max/mean 1.000" in proc.stderr
+    if nranks != 3:  # 32 rows in 3 blocks: uneven
+        assert f"particles per rank: {' '.join([str(1024 // nranks)] * nranks)} (max/mean 1.000" in proc.stderr
     ranks = run_outputs(lina_serial / f"n{nranks}")
     assert_same_run(ranks, run_outputs(lina_serial / "one"))
     h = ranks["history"][0]
@@ -84,7 +82,7 @@ def test_si3d_on_two_three_and_four_ranks_is_the_serial_run(mpirun, tmp_path):
         proc = launch(mpirun, n, SI3D, f"n{n}", tmp_path)
         assert "mpi: z rows 0 " in proc.stderr
         ranks = run_outputs(tmp_path / f"n{n}")
-        assert_same_run(ranks, serial)
+        assert_same_run(ranks, serial, BUDGETS | {"gas_mass_lost", "particle_mass_lost"})
         h = ranks["history"][0]
         total = h["mass"] + h["particle_mass"] + h["gas_mass_lost"] + h["particle_mass_lost"]
         assert np.max(np.abs(total - total[0])) <= 1e-12 * total[0]
@@ -156,12 +154,12 @@ def test_sigterm_on_one_rank_stops_every_rank_with_a_checkpoint(tmp_path):
     assert "Traceback" not in err
 
 
-def test_particles_leaving_through_z_faces_on_two_ranks(mpirun, tmp_path):
-    """The random box of ``tests/particles/test_conservation.py`` with outflow z faces (``_pbox.py``),
-    30 steps: 2.3 % of the particle mass leaves through the faces; on 2 ranks every history
-    column but the particle terms' impulse (measured 4.6e-16 of its largest value, asserted to
-    5e-14) and every final array are the serial run's bit for bit -- the mass and momentum lost
-    at each face are summed in the serial order by the end blocks."""
+def test_particles_leaving_through_x_and_z_faces_on_two_ranks(mpirun, tmp_path):
+    """The random box of ``tests/particles/test_conservation.py`` with outflow x and z faces and
+    gas terms (``_pbox.py``), 30 steps: 6.5 % of the particle mass leaves through the faces (4.6 %
+    through x); on 2 ranks every history column (the particle and gas terms' impulse and the mass
+    and momentum lost at each face among them: the end blocks add up the z faces', rank 0 the x
+    faces' of every block) and every final array are the serial run's bit for bit."""
     from . import _pbox
 
     for n, name in ((1, "one.npz"), (2, "two.npz")):
@@ -170,13 +168,12 @@ def test_particles_leaving_through_z_faces_on_two_ranks(mpirun, tmp_path):
     one, two = np.load(tmp_path / "one.npz"), np.load(tmp_path / "two.npz")
     names = list(one["names"])
     lost, mass = one["history"][-1, names.index("particle_mass_lost")], one["history"][0, names.index("particle_mass")]
-    assert 0.01 < lost / mass < 0.05
+    assert 0.03 < lost / mass < 0.13
+    for name in ("particle_terms_impulse_z", "gas_terms_impulse_z", "particle_mass_lost_x_lower",
+                 "particle_mass_lost_x_upper", "particle_mass_lost_z_lower", "particle_mass_lost_z_upper"):
+        assert one["history"][-1, names.index(name)] != 0, name
     for col, name in enumerate(names):
-        a, b = one["history"][:, col], two["history"][:, col]
-        if name in BUDGETS:
-            np.testing.assert_allclose(b, a, rtol=0, atol=5e-14 * np.max(np.abs(a)), err_msg=name)
-        else:
-            np.testing.assert_array_equal(b, a, err_msg=name)
+        np.testing.assert_array_equal(two["history"][:, col], one["history"][:, col], err_msg=name)
     for key in one.files:
         if key not in ("names", "history"):
             np.testing.assert_array_equal(two[key], one[key], err_msg=key)

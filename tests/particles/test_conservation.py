@@ -24,11 +24,11 @@ from dustygas.particles import (ConstantAcceleration, GasConstantAcceleration, P
 
 
 def random_box(kernel: str, shape=(16, 1, 12), seed=1, terms=None, gas_terms=(), z_kind="periodic",
-               particle_z="periodic", spread=0.3) -> ParticleGridEngine:
+               particle_z="periodic", spread=0.3, x_kind="periodic", particle_x="periodic") -> ParticleGridEngine:
     rng = np.random.default_rng(seed)
     mesh = Mesh(shape, (1.0, 1.0, 0.75))
     gas = GridEngine(mesh, cs=1.0, reconstruction="ppm", riemann="hllc", cfl=0.4 if mesh.ndim < 3 else 0.3,
-                     boundaries=("periodic", "periodic", z_kind))
+                     boundaries=(x_kind, "periodic", z_kind))
     sh = tuple(reversed(shape))
     gas.set_primitive(1 + 0.3 * rng.random(sh), 0.2 + 0.1 * rng.standard_normal(sh), 0.1 * rng.standard_normal(sh),
                       -0.1 + 0.1 * rng.standard_normal(sh))
@@ -42,7 +42,7 @@ def random_box(kernel: str, shape=(16, 1, 12), seed=1, terms=None, gas_terms=(),
     mass = 1.5 * mesh.cell_volume / 4 * rng.uniform(0.5, 1.5, n)
     store = ParticleStore.create(pos, vel, species, mass)
     return ParticleGridEngine(gas, store, [0.05, 0.2], drag_law=["fixed", "epstein"], kernel=kernel,
-                              particle_terms=terms, gas_terms=gas_terms, boundaries=("periodic", "periodic", particle_z))
+                              particle_terms=terms, gas_terms=gas_terms, boundaries=(particle_x, "periodic", particle_z))
 
 
 def scale(eng) -> float:

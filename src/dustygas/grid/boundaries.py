@@ -370,16 +370,15 @@ def fill_ghosts_threaded(u, t, lay, sp, bc, nthreads) -> None:
 
 
 @njit(inline="always")
-def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> float:
+def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> np.ndarray:
     """:func:`correct_radial_items` for every item (module docstring; Stone & Gardiner 2010,
-    §3); returns ``sum_{j,k} F_rho`` through the radial boundary after the correction
-    (multiply by ``dt dy dz`` for the mass that crossed it).
+    §3); returns ``sum_j F_rho`` through the radial boundary after the correction, per z plane
+    (``(nz,)``; multiply by ``dt dy dz`` for the mass that crossed it).
 
     The items are spread over ``nthreads`` chunks in 3D and in 2D x-y boxes with at least
     :data:`PARALLEL_REMAP_NY` cells along y (inlined, like :func:`fill_ghosts_threaded`; in a 2D
     x-z box an item is one cell and a parallel region would cost more than the work); they
-    are independent and the planes are summed in order, so the result does not depend on
-    ``nthreads``.
+    are independent, so the result does not depend on ``nthreads``.
     """
     nz = lay.nz
     plane_flux = np.zeros(nz)
@@ -391,10 +390,7 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> float:
                                  plane_flux)
     else:
         correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, 0, nitems, plane_flux)
-    total = 0.0
-    for k in range(nz):
-        total += plane_flux[k]
-    return total
+    return plane_flux
 
 
 # --------------------------------------------------------------------------- fields

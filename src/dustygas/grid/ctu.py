@@ -49,6 +49,7 @@ import numpy as np
 from numba import njit, prange
 
 from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
+from .budget import budget_offsets
 from .ctu_pencils import final_rows, half_step_rows, predict_pencils, transverse_pencils, transverse_rows
 from .diagnostics import combine_rates
 from .orbital_advection import remap_columns
@@ -113,8 +114,8 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
     in stage 0 and serves as scratch in stage 1. ``ext`` ``(3, nz, ny, nx)``: the external
     momentum source of this stage if ``use_ext``; ``wrap``: per axis, whether a ghost cell takes
     the source of its periodic image (else of the nearest domain cell) in the predictor.
-    ``budget[0]`` accumulates the mass through the radial boundary, ``budget[1]`` the
-    y-momentum of the rotating-frame sources.
+    ``budget`` (:mod:`dustygas.grid.budget`) accumulates the mass through the radial boundary
+    per z plane and the y-momentum of the rotating-frame sources per row ``(k, j)``.
 
     Returns
     -------
@@ -206,8 +207,9 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
         first_update = False
     t_half = t + 0.5 * dt
     if shearing:
-        mass_flux = correct_radial_fluxes(uh, bflux, dt / sp.dx, t_half, lay, sp, bc, nthreads)
-        budget[0] += dt * mass_flux * sp.dy * sp.dz
+        plane_flux = correct_radial_fluxes(uh, bflux, dt / sp.dx, t_half, lay, sp, bc, nthreads)
+        for k in range(nz):
+            budget[k] += dt * plane_flux[k] * sp.dy * sp.dz
     y_source = np.zeros(nrow)
     rates = np.zeros(nrow)
     bads = np.full(nrow, -1, dtype=np.int64)
@@ -215,10 +217,9 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
     for c in prange(nchunk):
         final_rows(u, uh, lay, sp, st, xc, zc, ext, use_ext, dt, scheme[3], y_source, rates, bads,
                    c * nrow // nchunk, (c + 1) * nrow // nchunk)
-    total = 0.0
-    for r in range(nrow):
-        total += y_source[r]
-    budget[1] += dt * total * sp.dx * sp.dy * sp.dz
+    y0 = budget_offsets(nx, ny, nz)[1]
+    for r in range(nrow):  # row r = k ny + j
+        budget[y0 + r] += dt * y_source[r] * sp.dx * sp.dy * sp.dz
     if oa_rate != 0.0 and ny > 1:
         ncol = nx * nz
         col_rates = np.zeros(ncol)

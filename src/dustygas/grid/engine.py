@@ -24,6 +24,7 @@ import numpy as np
 
 from ..errors import SetupError, SimulationError, UserError
 from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, fill_ghosts, make_boundaries
+from .budget import budget_offsets, budget_rows_from, budget_totals
 from .ctu import ctu_stage, ctu_work
 from .diagnostics import domain_sums, max_signal_rate
 from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tables
@@ -189,15 +190,22 @@ class GridEngine:
         self._wrap = tuple(BOUNDARY_KINDS[k] in (PERIODIC, SHEAR_PERIODIC) for k in boundaries)
         self._zflux = np.zeros((2, 4, mesh.shape[1], mesh.shape[0]))
         self._no_ext = np.zeros((3, 1, 1, 1))
-        #: time integrals [mass through the radial boundary, y-momentum from the source terms,
-        #: mass out through the lower and the upper z face]
-        self.budget = np.zeros(4)
+        #: the time integrals of :mod:`dustygas.grid.budget` per unit (z plane, row of cells,
+        #: face cell), which the stages add to; :attr:`budget` has their totals
+        self.budget_rows = np.zeros(budget_offsets(*mesh.shape)[0])
         self.t = 0.0
         self.cycle = 0
         self.work_units = mesh.ncells
         self._update_rate()  # an unset (zero) density is flagged until set_primitive
 
     # ------------------------------------------------------------------ state access
+    @property
+    def budget(self) -> np.ndarray:
+        """The time integrals [mass through the radial boundary, y-momentum from the source
+        terms, mass out through the lower and the upper z face]: the sums of :attr:`budget_rows`
+        (:func:`~dustygas.grid.budget.budget_totals`)."""
+        return budget_totals(self.budget_rows, self.mesh.shape)
+
     @property
     def state(self) -> np.ndarray:
         """Conserved variables ``(4, NZ, NY, NX)`` with ghost zones (slot 0 of :attr:`states`)."""
@@ -276,7 +284,7 @@ class GridEngine:
         rate, bad = advance_gas(
             self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
             self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate, self._no_ext, False,
-            self._bflux, self._zflux, self.budget, numba.get_num_threads(),
+            self._bflux, self._zflux, self.budget_rows, numba.get_num_threads(),
         )
         self._check(rate, bad)
         self.t += dt
@@ -322,13 +330,13 @@ class GridEngine:
             rate, bad = ctu_stage(
                 self.states, stage, dt, self.t, self._layout, self._spacing, self._scheme, self._sources, self._bc,
                 self._xc, self._zc, self._oa_rate, ext if use else self._no_ext, use, self._wrap, w.ql, w.qr, w.fluxes,
-                self._bflux, self.budget, numba.get_num_threads(),
+                self._bflux, self.budget_rows, numba.get_num_threads(),
             )
         else:
             rate, bad = advance_gas(
                 self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
                 self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-                ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget, numba.get_num_threads(),
+                ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget_rows, numba.get_num_threads(),
             )
         if stage == nstage - 1:
             self._check(rate, bad)
@@ -369,13 +377,14 @@ class GridEngine:
             "rho_max": s[5],
             "rho_min": s[6],
         }
+        budget = self.budget
         if self.shear_periodic or self._sources.active:
-            out["radial_boundary_mass"] = float(self.budget[0])
-            out["momentum_y_source"] = float(self.budget[1])
+            out["radial_boundary_mass"] = float(budget[0])
+            out["momentum_y_source"] = float(budget[1])
         if self.mesh.active[2] and self._bc.z_lo != PERIODIC:
-            out["gas_mass_lost_z_lower"] = float(self.budget[2])
-            out["gas_mass_lost_z_upper"] = float(self.budget[3])
-            out["gas_mass_lost"] = float(self.budget[2] + self.budget[3])
+            out["gas_mass_lost_z_lower"] = float(budget[2])
+            out["gas_mass_lost_z_upper"] = float(budget[3])
+            out["gas_mass_lost"] = float(budget[2] + budget[3])
         return {k: float(v) for k, v in out.items()}
 
     def snapshot(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
@@ -390,7 +399,8 @@ class GridEngine:
 
     def checkpoint(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
         inner = (slice(None),) + self.mesh.interior()
-        return {"conserved": self.states[0][inner].copy(), "budget": self.budget.copy()}, {}
+        return {"conserved": self.states[0][inner].copy(), "budget": self.budget,
+                "budget_rows": self.budget_rows.copy()}, {}
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
         inner = (slice(None),) + self.mesh.interior()
@@ -398,7 +408,5 @@ class GridEngine:
         if u.shape != self.states[0][inner].shape:
             raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {self.states[0][inner].shape}")
         self.states[0][inner] = u
-        budget = np.asarray(arrays["budget"])
-        self.budget[:] = 0.0  # checkpoints written before the z-face budget hold its first two entries
-        self.budget[: budget.size] = budget
+        self.budget_rows[:] = budget_rows_from(arrays, self.mesh.shape)
         self._update_rate()

@@ -51,6 +51,7 @@ import numpy as np
 from numba import njit, prange
 
 from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
+from .budget import budget_offsets
 from .diagnostics import cell_rate, combine_rates, fold_rate
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
@@ -125,11 +126,12 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
 
     Each stage: ghost fill of its input at the stage time; one parallel sweep per active
     axis (the first adds the sources and ``ext`` if ``use_ext``); the shear-periodic flux
-    correction; the budget. ``budget[0]`` accumulates the mass through the radial boundary,
-    ``budget[1]`` the y-momentum given by the rotating-frame source terms, ``budget[2]`` and
-    ``budget[3]`` the mass that left through the lower and upper z faces of a box that is not
-    periodic in z (the mass fluxes of the boundary faces, stored by the z sweep in ``zflux``,
-    ``(2, 4, ny, nx)``), each weighted with the stage's share of the step. ``oa_rate`` is ``q Omega`` under orbital advection
+    correction; the budget. ``budget`` is the flat array of :mod:`dustygas.grid.budget`: per z
+    plane the mass through the radial boundary, per row ``(k, j)`` the y-momentum given by the
+    rotating-frame source terms (summed along the first sweep's pencil), per face cell the mass
+    that left through the lower and upper z faces of a box that is not periodic in z (the mass
+    fluxes of the boundary faces, stored by the z sweep in ``zflux``, ``(2, 4, ny, nx)``), each
+    weighted with the stage's share of the step. ``oa_rate`` is ``q Omega`` under orbital advection
     (0: off). ``nthreads`` is the number of chunks the pencils are split into (results do not
     depend on it; numba cannot cache a function that asks for it itself).
 
@@ -148,6 +150,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     # the Courant rate of the new state: per pencil of the step's last sweep (or per column of
     # the orbital-advection remap), plus the radial edge cells after their flux correction
     nrate = nx * nz if remap else pencil_count(last_axis, lay)
+    _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
     rates = np.zeros(nrate)
     bads = np.full(nrate, -1, dtype=np.int64)
     for s in range(s_lo, s_hi):
@@ -184,21 +187,18 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
         #    step's net update, like the VL2 predictor: conservation needs only the others)
         if shearing and weight != 0.0:
-            mass_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, nthreads)
-            budget[0] += weight * dt * mass_flux * sp.dy * sp.dz
+            plane_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, nthreads)
+            for k in range(nz):
+                budget[k] += weight * dt * plane_flux[k] * sp.dy * sp.dz
         if open_z and weight != 0.0:  # mass flux F_z of the two faces: out is -F at the bottom, +F at the top
-            lower = 0.0
-            upper = 0.0
             for j in range(ny):
                 for i in range(nx):
-                    lower -= zflux[0, 0, j, i]
-                    upper += zflux[1, 0, j, i]
-            budget[2] += weight * dt * lower * sp.dx * sp.dy
-            budget[3] += weight * dt * upper * sp.dx * sp.dy
-        total = 0.0
-        for p in range(y_source.shape[0]):
-            total += y_source[p]
-        budget[1] += weight * dt * total * dvol
+                    budget[zl0 + j * nx + i] += weight * dt * -zflux[0, 0, j, i] * sp.dx * sp.dy
+                    budget[zu0 + j * nx + i] += weight * dt * zflux[1, 0, j, i] * sp.dx * sp.dy
+        if weight != 0.0:  # pencil p of an x sweep is row (k, j); of a y sweep (no x), row (k, 0)
+            row_step = 1 if first_axis == 0 else ny
+            for p in range(y_source.shape[0]):
+                budget[y0 + p * row_step] += weight * dt * y_source[p] * dvol
     if not finish:
         return 0.0, -1
     u = states[0]

@@ -16,13 +16,16 @@ its own, so that the next exchange step meets them in the serial order. The stat
 once per step, whatever the outputs asked for. The checkpoint is the serial one and restarts on
 any rank count (with z cuts chosen again for its particles).
 
-Budgets that are sums over the step's particles or cells -- the momentum the particle terms
-gave (``particle_terms_impulse_*``), the gas terms' impulse, the gas's radial mass and
-y-momentum budgets, what left through x and y faces -- are added per block and summed over the
-ranks in rank order: equal to the serial ones to round-off (measured <= 7e-15 of the column's
-largest value), not bit for bit. What left through the z faces is added up by the end blocks
-alone (also after a restart: each takes its face's total), and everything else (fields,
-particles, every other history column) is bit-identical.
+The budgets are bit-identical too. Those that are sums over the step's particles or cells --
+the momentum the particle terms gave (``particle_terms_impulse_*``), the gas terms' impulse,
+the gas's radial mass and y-momentum budgets -- are running totals per row of cells ``(k, j)``
+(or z plane), each summed in a fixed order by the block that holds the row
+(:func:`~dustygas.particles.push.kick`, :mod:`dustygas.grid.budget`); rank 0 gathers the rows
+and sums them as the serial engine does. What left through a z face is added up by the end
+block of that face alone, what left through an x or y face by rank 0 from every block's leaving
+particles (each a correctly rounded sum, :func:`~dustygas.particles.coupling.add_lost`). The
+checkpoint holds the rows of the whole box: a restart on another rank count, with other z cuts,
+goes on adding to the same rows.
 
 Phase-one limits: self-gravity (a mesh acceleration) and gas terms on mesh fields are refused
 (a first step for self-gravity: gather the density to rank 0, solve, scatter the potential --
@@ -36,6 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import UserError
+from ..particles.outputs import impulse_rows_from
 from ..particles.store import ParticleStore
 from ..particles.terms import GasMeshAcceleration, MeshAcceleration
 from .decomposition import balanced_cuts
@@ -152,13 +156,14 @@ class DistributedParticleEngine:
             loc._source[...] = np.asarray(arrays["particles/gas_source"])[:, k0:k1]
         first = self.rank == 0
         lost = np.asarray(arrays["particles/lost"]) if "particles/lost" in arrays else np.zeros((6, 4))
-        loc.lost[...] = 0.0  # the x and y faces' sums over blocks to rank 0, each z face to its block
+        loc.lost[...] = 0.0  # the x and y faces to rank 0, each z face to its block
         loc.lost[:4] = lost[:4] if first else 0.0
         loc.lost[4] = lost[4] if self.block == 0 else 0.0
         loc.lost[5] = lost[5] if self.block == self.size - 1 else 0.0
-        imp = np.asarray(arrays.get("particles/terms_impulse", np.zeros(6)))
-        loc.terms_impulse[...] = imp[:3] if first else 0.0
-        loc.gas_terms_impulse[...] = imp[3:] if first else 0.0
+        ny = self.mesh.shape[1]
+        rows = impulse_rows_from(arrays, self.mesh.shape[2] * ny)[k0 * ny:k1 * ny]  # the block's rows (k, j)
+        loc.terms_rows[...] = rows[:, :3]
+        loc.gas_terms_rows[...] = rows[:, 3:]
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
         """Take this rank's share of a whole-box (serial) checkpoint, with z cuts balanced for its
@@ -222,9 +227,9 @@ class DistributedParticleEngine:
         p = loc.particles
         n = p.n
         part = (p.pos.copy(), p.vel.copy(), p.species.copy(), p.pid.copy(), p.mass.copy(), loc._gkey[:n].copy())
-        budgets = np.concatenate([loc.lost.ravel(), loc.terms_impulse, loc.gas_terms_impulse])
         parts = self.comm.gather(part, root=0)
-        sums = self.comm.gather(budgets, root=0)
+        sums = self.comm.gather((self.block, loc.lost.copy(), loc.terms_rows.copy(), loc.gas_terms_rows.copy()),
+                                root=0)
         self._loads = [int(x[3].shape[0]) for x in parts] if self.rank == 0 else []
         self._gathered = self._version
         if self.rank != 0:
@@ -238,12 +243,13 @@ class DistributedParticleEngine:
         w.particles = store
         if store.capacity > w._capacity:
             w._allocate(store.capacity)
-        total = np.zeros_like(budgets)
-        for s in sums:  # rank order
-            total += s
-        w.lost[...] = total[:24].reshape(6, 4)
-        w.terms_impulse[...] = total[24:27]
-        w.gas_terms_impulse[...] = total[27:30]
+        lost = np.zeros((6, 4))
+        for s in sums:  # each face's entries are held by one rank, the others hold zeros
+            lost += s[1]
+        w.lost[...] = lost
+        sums.sort(key=lambda s: s[0])  # block (z) order: the rows of the whole box
+        w.terms_rows[...] = np.concatenate([s[2] for s in sums])
+        w.gas_terms_rows[...] = np.concatenate([s[3] for s in sums])
 
     def _load_line(self) -> str:
         return (f"particles per rank: {' '.join(str(int(x)) for x in self._loads)} (max/mean "

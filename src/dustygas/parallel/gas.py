@@ -9,10 +9,13 @@ exact ``max`` of the Courant rates, so it is the serial one).
 Outputs and diagnostics are decomposition-independent by construction: the domain blocks are
 gathered to rank 0 into a whole-box engine, whose :meth:`history`, :meth:`snapshot` and
 :meth:`checkpoint` are those of a serial run of the same state (sums over the box in the
-serial order). The checkpoint is the serial one (the whole conserved array), so a run
-written on ``N`` ranks restarts on ``M``. The boundary budgets (radial mass flux, source
-y-momentum, mass lost through open z faces) are accumulated per block and summed over ranks
-in rank order: equal to the serial ones to round-off, not bit for bit.
+serial order). The checkpoint is the serial one (the whole conserved array and the budgets
+per row), so a run written on ``N`` ranks restarts on ``M``. The boundary budgets (radial mass
+flux, source y-momentum, mass lost through open z faces) are running totals per unit of cells
+(:mod:`dustygas.grid.budget`: z planes, rows ``(k, j)``, face cells), each held and added to by
+the one block that holds the unit, so the gathered units are the serial ones and so are their
+sums, bit for bit -- but for a rotating box whose first swept axis (x) is split, where a row's
+y-momentum is the sum of its blocks' parts (added in rank order).
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ import numpy as np
 
 from ..errors import SimulationError, UserError
 from ..grid.boundaries import NEIGHBOUR
+from ..grid.budget import budget_offsets, budget_rows_from, budget_sections
 from ..grid.engine import GridEngine
 from ..grid.mesh import Mesh
 from .decomposition import Decomposition, block_mesh, check_cuts, check_layout, choose_layout, unsplittable_axes
@@ -83,8 +87,8 @@ class DistributedGridEngine:
         self.halo = HaloExchange(comm, self.decomposition, self.rank, self.block.ghosts, wraps)  # type: ignore[arg-type]
         faces = {face: NEIGHBOUR for face, inner in self.halo.neighbour_faces().items() if inner}
         self.local._bc = self.local._bc._replace(**faces)
-        # budget entries of the open z faces (2: lower, 3: upper) that are block faces here
-        self._inner_z_budget = [i for i, face in ((2, "z_lo"), (3, "z_hi")) if face in faces]
+        # the budget sections of the open z faces that are block faces here (nothing leaves through them)
+        self._inner_z_budget = [name for name, face in (("z_lower", "z_lo"), ("z_upper", "z_hi")) if face in faces]
         self.whole = GridEngine(mesh, **engine_options) if self.rank == 0 else None
         self.work_units = mesh.ncells
 
@@ -114,21 +118,25 @@ class DistributedGridEngine:
         self.local.set_primitive(self._block(rho), self._block(vx), self._block(vy), self._block(vz))
 
     def _gather(self) -> None:
-        """Copy every block's domain cells and budget into the whole-box engine on rank 0."""
+        """Copy every block's domain cells and budget units into the whole-box engine on rank 0."""
         inner = (slice(None),) + self.block.interior()
         mine = np.ascontiguousarray(self.local.states[0][inner])
-        blocks = self.comm.gather(mine, root=0)  # blocks of uneven z cuts differ in shape
-        budgets = np.empty((self.size, self.local.budget.size)) if self.rank == 0 else None
-        self.comm.Gather(np.ascontiguousarray(self.local.budget), budgets, root=0)
+        blocks = self.comm.gather((mine, self.local.budget_rows.copy()), root=0)  # uneven z cuts: shapes differ
         if self.rank == 0:
             whole = self.whole.states[0][(slice(None),) + self.mesh.interior()]
-            for r in range(self.size):
-                whole[(slice(None),) + self.decomposition.block_slices(r)] = blocks[r]
-            total = np.zeros(self.local.budget.size)
-            for r in range(self.size):  # fixed (rank) order
-                total += budgets[r]
-            self.whole.budget[:] = total
+            self.whole.budget_rows[:] = 0.0
+            units = budget_sections(self.whole.budget_rows, self.mesh.shape)
+            for r in range(self.size):  # rank order (a unit that several blocks hold: module doc)
+                whole[(slice(None),) + self.decomposition.block_slices(r)] = blocks[r][0]
+                for name, part in budget_sections(blocks[r][1], self.decomposition.block_shape_of(r)).items():
+                    units[name][self._unit_slices(r)[name]] += part
             self.whole.t, self.whole.cycle = self.local.t, self.local.cycle
+
+    def _unit_slices(self, rank: int) -> dict[str, tuple[slice, ...]]:
+        """Where the budget sections of the block of ``rank`` lie in the whole box's
+        (:func:`~dustygas.grid.budget.budget_sections`)."""
+        zs, ys, xs = self.decomposition.block_slices(rank)
+        return {"radial": (zs,), "y_source": (zs, ys), "z_lower": (ys, xs), "z_upper": (ys, xs)}
 
     # ------------------------------------------------------------------ run-loop protocol
     def agree(self, decisions: tuple) -> tuple:
@@ -169,12 +177,15 @@ class DistributedGridEngine:
         """:meth:`GridEngine.advance_stage <dustygas.grid.engine.GridEngine.advance_stage>` of the
         block (``ext``: the block's source), after the halo exchange of the stage's input."""
         local = self.local
-        if stage == 0:
-            self._kept = local.budget[self._inner_z_budget].copy()
+        if stage == 0 and self._inner_z_budget:
+            units = budget_sections(local.budget_rows, self.block.shape)
+            self._kept = [units[name].copy() for name in self._inner_z_budget]
         self.halo.fill(local.stage_input(stage))
         local.advance_stage(stage, dt, ext)
-        if stage == local.stage_count - 1:
-            local.budget[self._inner_z_budget] = self._kept  # the flux through a block face is not lost
+        if stage == local.stage_count - 1 and self._inner_z_budget:
+            units = budget_sections(local.budget_rows, self.block.shape)
+            for name, kept in zip(self._inner_z_budget, self._kept):
+                units[name][...] = kept  # the flux through a block face is not lost
 
     def history(self) -> dict[str, float]:
         """:meth:`GridEngine.history` of the gathered box (the same on every rank)."""
@@ -199,24 +210,21 @@ class DistributedGridEngine:
         if u.shape != want:
             raise UserError(f"checkpoint holds a state of shape {u.shape}, the configuration a {want}")
         mine = {"conserved": np.ascontiguousarray(u[(slice(None),) + self.decomposition.block_slices(self.rank)]),
-                "budget": self._budget_share(np.asarray(arrays["budget"]))}
+                "budget_rows": self._budget_share(budget_rows_from(arrays, self.mesh.shape))}
         self.local.restore(mine, attrs)
 
-    def _budget_share(self, budget: np.ndarray) -> np.ndarray:
-        """This rank's part of the whole box's budget: rank 0 takes the sums over blocks; with a z
-        split alone, the mass lost through the lower and upper z faces goes to the blocks of those
-        faces, which go on adding to it as one process would (so it stays bit for bit)."""
-        out = np.zeros(budget.size)
-        dims = self.decomposition.dims
-        cz = self.decomposition.coords(self.rank)[2]
-        z_only = dims[0] == dims[1] == 1
-        for i, value in enumerate(budget):
-            if i == 2 and z_only:
-                out[i] = value if cz == 0 else 0.0
-            elif i == 3 and z_only:
-                out[i] = value if cz == dims[2] - 1 else 0.0
-            elif self.rank == 0:
-                out[i] = value
+    def _budget_share(self, rows: np.ndarray) -> np.ndarray:
+        """This rank's units of the whole box's budget ``rows``: the z planes and rows of its
+        block (a row along a split x axis to the first x block), the face cells of the lower and
+        upper z faces to the blocks of those faces; they go on adding to them as one process would."""
+        out = np.zeros(budget_offsets(*self.block.shape)[0])
+        mine, whole = budget_sections(out, self.block.shape), budget_sections(rows, self.mesh.shape)
+        cx, cy, cz = self.decomposition.coords(self.rank)
+        owner = {"radial": cx == 0 and cy == 0, "y_source": cx == 0, "z_lower": cz == 0,
+                 "z_upper": cz == self.decomposition.dims[2] - 1}
+        for name, where in self._unit_slices(self.rank).items():
+            if owner[name]:
+                mine[name][...] = whole[name][where]
         return out
 
     def primitive(self) -> tuple[np.ndarray, ...]:

@@ -38,8 +38,8 @@ from numba import njit
 
 from ..errors import SetupError, SimulationError
 from ..grid.boundaries import FIELD_NEIGHBOUR
-from ..particles.boundaries import apply_boundaries
-from ..particles.coupling import ParticleGridEngine
+from ..particles.boundaries import OUTFLOW, apply_boundaries
+from ..particles.coupling import ParticleGridEngine, add_lost
 from ..particles.interp import axis_cell
 from ..particles.store import sort_by_cell
 
@@ -154,6 +154,9 @@ class BlockParticleEngine(ParticleGridEngine):
         if self._nzb < R + 2:
             raise SetupError(f"a block of {self._nzb} rows along z: the particles need >= {R + 2} "
                              f"(kernel {self.kernel}); use fewer MPI ranks")
+        #: particles can leave through an x or y face (outflow): the leaving particles of every
+        #: block are gathered to rank 0 at each exchange step, which sums them in one place
+        self._open_xy = OUTFLOW in (self._pb.x, self._pb.y)
         bits = (16 if lo is not None else 0) | (32 if hi is not None else 0)
         self._pb = self._pb._replace(neighbours=bits)
         kz = int(self._field_kinds[2])
@@ -202,13 +205,15 @@ class BlockParticleEngine(ParticleGridEngine):
         shift = self.geometry.shear_offset(t)
         count = apply_boundaries(pos, vel, n, self._lay, self._sp, self._pb, shift, self._leaving, half_dt)
         flags = self._leaving[:n]
-        if count:
-            for face in range(6):
-                sel = flags == face + 1
-                if np.any(sel):
-                    m = p.mass[sel]
-                    self.lost[face, 0] += float(m.sum())
-                    self.lost[face, 1:] += p.vel[:, sel] @ m
+        if count:  # the z faces: the end blocks hold every particle that leaves through them
+            add_lost(self.lost, flags, p.mass, p.vel, (4, 5))
+        if self._open_xy:  # the x and y faces: every block's leaving particles, summed on rank 0
+            sel = (flags >= 1) & (flags <= 4)
+            m = p.mass[sel]
+            leaving = self.comm.gather((flags[sel], m, p.vel[:, sel]), root=0)
+            if self.comm.Get_rank() == 0:
+                f, m, v = (np.concatenate([x[i] for x in leaving], axis=-1) for i in range(3))
+                add_lost(self.lost, f, m, v, range(4))
         dest = self._owners(pos, n, self._leaving)
         stay = (dest == self._block) | (dest == -2)
         down = (dest == self._lo_block) if self._lo_block is not None else np.zeros(n, dtype=np.bool_)

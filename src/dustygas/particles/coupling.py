@@ -53,6 +53,7 @@ the Colella & Sekora (2008) limiter (the classic CW84 limiter: -6.2 %).
 
 from __future__ import annotations
 
+import math
 from typing import Sequence
 
 import numba
@@ -72,7 +73,7 @@ from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values,
 from .outputs import CoupledOutputs
 from .blocks import OneBlock
 from .store import ParticleStore, sort_by_cell
-from .terms import MeshAcceleration, RotatingFrame, force_table
+from .terms import MeshAcceleration, RotatingFrame, add_row_impulse, force_table
 
 __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_density"]
 
@@ -80,6 +81,21 @@ __all__ = ["ParticleGridEngine", "DRAG_LAWS", "GAS_INTEGRATORS", "deposit_densit
 #: stages of VL2 or CTU, both of which give U^{n+1/2} (Bai & Stone 2010a, §2.3); the
 #: ``scheme.integrator`` of the particle problems offers these
 GAS_INTEGRATORS = ("vl2", "ctu")
+
+
+def add_lost(lost: np.ndarray, flags: np.ndarray, mass: np.ndarray, vel: np.ndarray, faces) -> None:
+    """Add to ``lost[face]`` the mass and momentum ``[m, m v_x, m v_y, m v_z]`` of the particles
+    leaving through each of ``faces`` (``flags[p] == face + 1``), each sum correctly rounded
+    (:func:`math.fsum`): it does not depend on the particles' order, so a block holding the
+    same leaving particles adds the same numbers (:mod:`dustygas.parallel`)."""
+    n = flags.shape[0]
+    for face in faces:
+        sel = flags == face + 1
+        if np.any(sel):
+            m = mass[:n][sel]
+            lost[face, 0] += math.fsum(m)
+            for a in range(3):
+                lost[face, 1 + a] += math.fsum(vel[a, :n][sel] * m)
 
 
 class ParticleGridEngine(CoupledOutputs, OneBlock):
@@ -256,13 +272,14 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         nyr, nzr = ny + 2 * self._reach[1], nz + 2 * self._reach[2]
         self._img_row_start = np.zeros(nyr * nzr + 1, dtype=np.int64)
         self._img_capacity = 0
-        self._budget = np.zeros((PARTICLE_CHUNKS, 3))
         self._vmax_work = np.zeros((PARTICLE_CHUNKS, 3))
-        #: time integrals: [mass, p_x, p_y, p_z] that left through each face; momentum the
-        #: particle terms gave the particles; momentum the gas terms gave the gas
+        #: time integrals: [mass, p_x, p_y, p_z] that left through each face; per row of cells
+        #: ``(k, j)`` (row ``k ny + j``), the momentum the particle terms gave its particles and
+        #: the momentum the gas terms gave its gas (each row summed in a fixed order, so that
+        #: the rows do not depend on the block that holds them: :attr:`terms_impulse`)
         self.lost = np.zeros((6, 4))
-        self.terms_impulse = np.zeros(3)
-        self.gas_terms_impulse = np.zeros(3)
+        self.terms_rows = np.zeros((nz * ny, 3))
+        self.gas_terms_rows = np.zeros((nz * ny, 3))
         self._allocate(max(particles.capacity, 1))
         self._images = 0
         #: particles of neighbouring blocks held after the store's own (halo sources; 0 in one block)
@@ -318,6 +335,18 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             if pos[axis].min() < lo or pos[axis].max() >= lo + length:
                 raise SetupError(f"particle positions along {'xyz'[axis]} must lie in [{lo:g}, {lo + length:g})")
 
+    # ------------------------------------------------------------------ budgets
+    @property
+    def terms_impulse(self) -> np.ndarray:
+        """The momentum ``(3,)`` the particle terms gave the particles: the correctly rounded
+        sum of :attr:`terms_rows` (:func:`math.fsum`, which does not depend on their order)."""
+        return np.array([math.fsum(col) for col in self.terms_rows.T])
+
+    @property
+    def gas_terms_impulse(self) -> np.ndarray:
+        """The momentum ``(3,)`` the gas terms gave the gas (the sum of :attr:`gas_terms_rows`)."""
+        return np.array([math.fsum(col) for col in self.gas_terms_rows.T])
+
     # ------------------------------------------------------------------ time
     @property
     def t(self) -> float:
@@ -363,12 +392,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         count = apply_boundaries(pos, vel, p.n, self._lay, self._sp, self._pb, shift, self._leaving, half_dt)
         if count:
             flags = self._leaving[:p.n]
-            for face in range(6):
-                sel = flags == face + 1
-                if np.any(sel):
-                    m = p.mass[sel]
-                    self.lost[face, 0] += float(m.sum())
-                    self.lost[face, 1:] += p.vel[:, sel] @ m
+            add_lost(self.lost, flags, p.mass, p.vel, range(6))
             p.remove(flags == 0)
 
     def _prepare(self, t: float) -> None:
@@ -503,12 +527,10 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
-        self._budget[...] = 0.0  # the kick writes the rows of its chunks only: fewer than 64 with few particles
-        self._vmax_work[...] = 0.0
+        self._vmax_work[...] = 0.0  # the kick writes the rows of its chunks only: fewer than 64 with few particles
         kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
              traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
-             h, self._inv_vol, self._active, self._values, self._budget, self._vmax_work)
-        self.terms_impulse += self._budget.sum(axis=0)
+             h, self._inv_vol, self._active, self._values, self.terms_rows, self._vmax_work, self._fwork)
         self._vmax = self._vmax_work.max(axis=0)
         if self.feedback:
             self._kicked(n)
@@ -521,7 +543,6 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         if use_ext:
             ext = self._stage_source(u_half, t_half)
             if self.gas_terms:
-                before = self._source.sum(axis=(1, 2, 3)) if self.feedback else 0.0
-                self.gas_terms_impulse += (ext.sum(axis=(1, 2, 3)) - before) * h * self.mesh.cell_volume
+                add_row_impulse(ext, self._source, self.feedback, h * self.mesh.cell_volume, self.gas_terms_rows)
         gas.advance_stage(1, h, ext)
         self._exchange(t + h)

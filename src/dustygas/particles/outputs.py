@@ -154,6 +154,7 @@ class CoupledOutputs:
             arrays["particles/gas_source"] = self._source.copy()
         arrays["particles/lost"] = self.lost.copy()
         arrays["particles/terms_impulse"] = np.concatenate([self.terms_impulse, self.gas_terms_impulse])
+        arrays["particles/terms_impulse_rows"] = np.concatenate([self.terms_rows, self.gas_terms_rows], axis=1)
         return arrays, attrs
 
     def restore(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> None:
@@ -169,8 +170,27 @@ class CoupledOutputs:
         self._have_source = "particles/gas_source" in arrays
         if self._have_source:
             self._source[...] = arrays["particles/gas_source"]
-        if "particles/lost" in arrays:
-            self.lost[...] = arrays["particles/lost"]
-            imp = np.asarray(arrays["particles/terms_impulse"])
-            self.terms_impulse[...] = imp[:3]
-            self.gas_terms_impulse[...] = imp[3:]
+        self.lost[...] = arrays["particles/lost"] if "particles/lost" in arrays else 0.0
+        rows = impulse_rows_from(arrays, self.terms_rows.shape[0])
+        self.terms_rows[...] = rows[:, :3]
+        self.gas_terms_rows[...] = rows[:, 3:]
+
+
+def impulse_rows_from(arrays: dict, nrows: int) -> np.ndarray:
+    """The impulse of the particle and the gas terms per row of cells ``(nrows, 6)`` of a whole-box
+    checkpoint: its ``particles/terms_impulse_rows``, or, in a checkpoint written before them, its
+    totals ``particles/terms_impulse`` in the first row (whose block then goes on adding to them:
+    a restart on any rank count gives the same numbers); zeros without either.
+
+    >>> impulse_rows_from({"particles/terms_impulse": np.arange(6.0)}, 2).tolist()
+    [[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]
+    """
+    if "particles/terms_impulse_rows" in arrays:
+        rows = np.asarray(arrays["particles/terms_impulse_rows"], dtype=np.float64)
+        if rows.shape != (nrows, 6):
+            raise UserError(f"checkpoint holds impulse rows of shape {rows.shape}, the configuration needs ({nrows}, 6)")
+        return rows.copy()
+    rows = np.zeros((nrows, 6))
+    if "particles/terms_impulse" in arrays:
+        rows[0] = np.asarray(arrays["particles/terms_impulse"], dtype=np.float64)
+    return rows

@@ -205,7 +205,7 @@ def explicit_drag_source(u_old, gas_g, sp, off, shear_rate, dep, nsp, sp_tab, ou
 
 @njit(cache=True, parallel=True, error_model="numpy")
 def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_rho, c_mesh, sp_tab, coef, ft,
-         shear_rate, h, inv_vol, active, values, budget, vmax):
+         shear_rate, h, inv_vol, active, values, budget, vmax, work):
     """Gather, velocity update and second half drift of particles ``0 .. n-1`` (module docstring).
 
     ``pos`` holds ``x^{n+1/2}`` and becomes ``x^{n+1}``; ``vel`` ``v^n`` -> ``v^{n+1}``. The
@@ -217,8 +217,13 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
     ``coef`` ``(nsp, N_COEF)``: the step coefficients of the species of fixed stopping time
     (:func:`~dustygas.particles.drag.step_coefficients`). ``values[p]`` receives minus the
     particle's drag impulse per unit volume and time, ``-m (v^{n+1} - v^n - g h)/(V h)`` (the
-    gas's share, deposited next). ``budget`` ``(nchunk, 3)``: per chunk, the momentum the
-    particles received from the non-drag terms; ``vmax`` ``(nchunk, 3)``: the largest ``|v_d|``.
+    gas's share, deposited next). ``budget`` ``(nz ny, 3)``: running totals per row of cells
+    ``(k, j)`` (``keys // nx``) of the momentum the particles received from the non-drag terms,
+    to which each row's sum over its particles, in their order, is added: a sum that does not
+    depend on the chunks, the thread count or the block (:mod:`dustygas.parallel`) that holds
+    the row. A row that two chunks share has its particles' impulses written to ``work``
+    ``(>= 3, >= n)`` and summed after the parallel loop. ``vmax`` ``(nchunk, 3)``: the largest
+    ``|v_d|`` per chunk.
     """
     nx, ny = lay.nx, lay.ny
     tx, ty, tz = gt
@@ -227,11 +232,18 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
     nchunk = min(max(n, 1), PARTICLE_CHUNKS)
     for c in prange(nchunk):
         own = np.empty((1, N_COEF))  # the step coefficients of an Epstein particle
+        p0, p1 = c * n // nchunk, (c + 1) * n // nchunk
+        # the first and last rows of the chunk, and whether the neighbouring chunks share them
+        row_lo, row_hi = keys[p0] // nx if p1 > p0 else -1, keys[p1 - 1] // nx if p1 > p0 else -1
+        shared_lo = p1 > p0 and p0 > 0 and keys[p0 - 1] // nx == row_lo
+        shared_hi = p1 > p0 and p1 < n and keys[p1] // nx == row_hi
+        cells_row = -1  # the row whose sum (bx, by, bz) is running
         bx = by = bz = 0.0
         mx = my = mz = 0.0
-        for p in range(c * n // nchunk, (c + 1) * n // nchunk):
+        for p in range(p0, p1):
             key = keys[p]
-            i, j, k = key % nx, (key // nx) % ny, key // (nx * ny)
+            u = key // nx  # the row (k, j)
+            i, j, k = key - u * nx, u % ny, u // ny
             s = species[p]
             rcol = RESPONSE + 3 * s
             # the gathered u0 (3), A (3), R (3), rho, mesh acceleration (3): scalars, which stay
@@ -314,9 +326,24 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             values[p, 1] = q * jy
             values[p, 2] = q * jz
             m = mass[p]
-            bx += m * gx_ * h
-            by += m * (nvy - v0y - jy)  # the change of the stored v_y that is not drag
-            bz += m * ext_z
+            ix_ = m * gx_ * h
+            iy_ = m * (nvy - v0y - jy)  # the change of the stored v_y that is not drag
+            iz_ = m * ext_z
+            if (shared_lo and u == row_lo) or (shared_hi and u == row_hi):
+                work[0, p] = ix_
+                work[1, p] = iy_
+                work[2, p] = iz_
+            else:
+                if u != cells_row:
+                    if cells_row >= 0:
+                        budget[cells_row, 0] += bx
+                        budget[cells_row, 1] += by
+                        budget[cells_row, 2] += bz
+                    cells_row = u
+                    bx = by = bz = 0.0
+                bx += ix_
+                by += iy_
+                bz += iz_
             vel[0, p] = nvx
             vel[1, p] = nvy
             vel[2, p] = nvz
@@ -328,12 +355,34 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             mx = max(mx, abs(nvx))
             my = max(my, abs(nvy))
             mz = max(mz, abs(nvz))
-        budget[c, 0] = bx
-        budget[c, 1] = by
-        budget[c, 2] = bz
+        if cells_row >= 0:
+            budget[cells_row, 0] += bx
+            budget[cells_row, 1] += by
+            budget[cells_row, 2] += bz
         vmax[c, 0] = mx
         vmax[c, 1] = my
         vmax[c, 2] = mz
+    # the rows two or more chunks share, each summed over its particles in order
+    done = -1
+    for edge in range(1, nchunk):  # names apart from the parallel loop's (numba would share them)
+        at = edge * n // nchunk
+        shared = keys[at] // nx
+        if shared == done or keys[at - 1] // nx != shared:
+            continue
+        first, last = at - 1, at + 1
+        while first > 0 and keys[first - 1] // nx == shared:
+            first -= 1
+        while last < n and keys[last] // nx == shared:
+            last += 1
+        sx = sy = sz = 0.0
+        for q in range(first, last):
+            sx += work[0, q]
+            sy += work[1, q]
+            sz += work[2, q]
+        budget[shared, 0] += sx
+        budget[shared, 1] += sy
+        budget[shared, 2] += sz
+        done = shared
 
 
 def shear_frame_forces(ft: ForceTable, shear_rate: float) -> ForceTable:

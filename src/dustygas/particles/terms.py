@@ -65,7 +65,7 @@ from ..grid.shearing_box import rotating_frame
 
 __all__ = ["ForceTable", "ParticleTerm", "RotatingFrame", "VerticalGravity", "ConstantAcceleration",
            "MeshAcceleration", "GasTerm", "GasConstantAcceleration", "GasMeshAcceleration", "force_table",
-           "frame_acceleration"]
+           "frame_acceleration", "add_row_impulse"]
 
 
 class ForceTable(NamedTuple):
@@ -193,3 +193,26 @@ class GasMeshAcceleration(GasTerm):
 
     def add_source(self, engine, rho_gas: np.ndarray, t: float, out: np.ndarray) -> None:
         out += rho_gas * self.term.field
+
+
+@njit(cache=True, error_model="numpy")
+def add_row_impulse(ext, base, with_base, factor, rows) -> None:
+    """``rows[k ny + j, c] += factor Σ_i (ext - base)[c, k, j, i]``: the momentum the gas terms gave
+    each row of cells ``(k, j)`` in a step (``factor = h V``; ``ext`` the stage's source, which
+    holds the drag source ``base`` if ``with_base``), summed along the row in cell order, so that
+    it does not depend on the block that holds the row (:mod:`dustygas.parallel`)."""
+    _, nz, ny, nx = ext.shape
+    for k in range(nz):
+        for j in range(ny):
+            sx = sy = sz = 0.0
+            for i in range(nx):
+                bx = base[0, k, j, i] if with_base else 0.0
+                by = base[1, k, j, i] if with_base else 0.0
+                bz = base[2, k, j, i] if with_base else 0.0
+                sx += ext[0, k, j, i] - bx
+                sy += ext[1, k, j, i] - by
+                sz += ext[2, k, j, i] - bz
+            u = k * ny + j
+            rows[u, 0] += sx * factor
+            rows[u, 1] += sy * factor
+            rows[u, 2] += sz * factor
