@@ -12,7 +12,10 @@ within each repeat, best of ``--repeat`` kept:
 * ``layer``   the settled layer of ``si3d`` at 32 x 32 x 48 (the particles within a few cells
               of the midplane, outflow z faces), 40 steps: the z cuts balance cells + particles.
 
-The script prints zone-cycles/s of 1 and 2 ranks, the ratio, the particles per rank of the
+Every case writes no history or snapshot between its first and last step (``run.dt_history`` and
+``run.dt_snapshot`` = 1e3: until 2026-12-03 the gas cases kept their problems' cadences, and a
+history row gathers the whole box to rank 0). ``--difference SHORT LONG`` times the steps alone
+(runs of SHORT and LONG steps, work and wall differenced). The script prints zone-cycles/s of 1 and 2 ranks, the ratio, the particles per rank of the
 2-rank run with max/mean (from its log), and ``uptime`` before and after (a 2-rank figure
 needs both cores quiet). Run alone::
 
@@ -32,8 +35,8 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-GRID = ["--set", "grid.nx=64", "--set", "grid.ny=64", "--set", "grid.nz=64", "--set", "run.max_cycles=40"]
 QUIET = ["--set", "run.dt_history=1e3", "--set", "run.dt_snapshot=1e3", "--set", "run.max_cycles=40"]
+GRID = ["--set", "grid.nx=64", "--set", "grid.ny=64", "--set", "grid.nz=64", *QUIET]
 CASES = {
     "sound": ["soundwave-3d", *GRID],
     "shear": ["epicycle", *GRID, "--set", "scheme.cfl=0.3", "--set", "shearing_box.orbital_advection=true"],
@@ -56,7 +59,20 @@ def run_once(case: list[str], ranks: int, workdir: Path) -> tuple[float, str]:
     if found is None:
         raise SystemExit(f"no throughput line:\n{proc.stderr}")
     load = re.search(r"mpi: (z rows .*)", proc.stderr)
+    run_once.wall = float(re.search(r"wall=([0-9.e+-]+)s", proc.stderr).group(1))
     return float(found.group(1)), load.group(1) if load else ""
+
+
+def stepping_rate(case: list[str], ranks: int, workdir: Path, short: int, long: int) -> float:
+    """zone-cycles/s of the steps alone: the work and the loop wall time of a run of ``long``
+    steps minus those of ``short`` steps (the first steps' thread and cache warm-up, the final
+    snapshot and checkpoint, gathered to rank 0, cancel)."""
+    work, wall = [], []
+    for cycles in (short, long):
+        rate, _ = run_once([*case, "--set", f"run.max_cycles={cycles}"], ranks, workdir)
+        wall.append(run_once.wall)
+        work.append(rate * run_once.wall)
+    return (work[1] - work[0]) / (wall[1] - wall[0])
 
 
 def cpu_per_step(case: list[str], ranks: int, workdir: Path, short: int, long: int) -> float:
@@ -78,7 +94,27 @@ def main() -> None:
     parser.add_argument("--cpu", action="store_true",
                         help="(a loaded machine) CPU time per step of 1 rank and of 2 ranks together instead of "
                              "wall-clock rates: 20 and 60 steps, differenced")
+    parser.add_argument("--difference", nargs=2, type=int, metavar=("SHORT", "LONG"),
+                        help="wall-clock rate of the steps alone: runs of SHORT and LONG steps, differenced "
+                             "(start-up and the final outputs cancel)")
     args = parser.parse_args()
+    if args.difference:
+        short, long = args.difference
+        print("uptime before:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+        with tempfile.TemporaryDirectory() as tmp:
+            for name in args.cases:
+                case = CASES[name]
+                run_once(case, 1, Path(tmp))  # compile
+                rates = {1: [], 2: []}
+                for _ in range(args.repeat):
+                    for ranks in (1, 2):
+                        rates[ranks].append(stepping_rate(case, ranks, Path(tmp), short, long))
+                one, two = max(rates[1]), max(rates[2])
+                print(f"{name:6s} steps {short}->{long}: 1 rank {one:.4g}  2 ranks {two:.4g} zone-cycles/s  "
+                      f"speed-up {two / one:.2f} (per repeat: "
+                      + ", ".join(f"{b / a:.2f}" for a, b in zip(rates[1], rates[2])) + ")", flush=True)
+        print("uptime after:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+        return
     if args.cpu:
         print("uptime before:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
         with tempfile.TemporaryDirectory() as tmp:
