@@ -54,8 +54,8 @@ def test_relaxed_disk_holds_its_surface_density_and_rotation_for_ten_orbits():
     """Ten orbits at 20 au with individual steps: Sigma in annuli between 20 and 150 au holds the relaxed
     start to within three times the Poisson scale of the annulus's particle count, 1/sqrt(n) = 2.4-4.4 %
     (an annulus gains or loses whole particles of equal mass; measured: max 3.3 % at stop 21,
-    5.7 % = 1.6 sigma in the 769-particle annulus on 2026-12-03 -- the code since stop 21 gives another
-    realisation of the same disk; the fixed 5 % bound asserted until then was 1.4 sigma there), the
+    5.7 % = 1.6 sigma in the 769-particle annulus on 2026-12-03 with the SPH changes since, not bisected;
+    the fixed 5 % bound asserted until then was 1.4 sigma there), the
     rotation curve v_phi/v_K within 1 % (measured 0.66 %), the angular momentum (gas + accreted) within
     1e-12 relative (measured 9e-15).
     Cost: 2.1 M particle updates, about 30 s quiet, 3.5 min on a machine shared with other jobs."""
