@@ -61,11 +61,12 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
+from ._launch import STOP_SIGNALS
 from ._version import __version__
 from .config import Config, Param, dump_toml
 from .errors import EXIT_WALLTIME, OutputError, SimulationError, UserError
 from .io.rundir import RunDirectory
-from .parallel.comm import STOP_SIGNALS, agreed, launched_under_mpi
+from .parallel.comm import agreed, launched_under_mpi
 from .threads import ThreadControl
 
 __all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine", "config_text", "CHECKPOINT_ATTRS"]

@@ -7,10 +7,9 @@ so a one-process run never loads :mod:`mpi4py` (nor the MPI library behind it).
 
 from __future__ import annotations
 
-from .._launch import STOP_SIGNALS, hold_stop_signals, rank_and_size
+from .._launch import rank_and_size
 
-__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer", "check_ranks", "STOP_SIGNALS",
-           "hold_stop_signals"]
+__all__ = ["launched_under_mpi", "rank_and_size", "world", "agreed", "is_writer", "check_ranks"]
 
 
 def launched_under_mpi() -> bool:
