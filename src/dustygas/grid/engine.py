@@ -29,7 +29,7 @@ from .ctu import ctu_stage, ctu_work
 from .diagnostics import domain_sums, max_signal_rate
 from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tables
 from .mesh import Mesh
-from .reconstruct import LIMITERS, RECONSTRUCTIONS
+from .reconstruct import LIMITERS, RECONSTRUCTIONS, STENCIL_DEPTH
 from .riemann import RIEMANN_SOLVERS
 from .shearing_box import shear_offset, shear_velocity_jump, source_terms
 
@@ -307,6 +307,15 @@ class GridEngine:
     def remap_codes(self) -> tuple[int, int]:
         """Reconstruction and limiter codes of the scheme (for conservative shifts of other fields)."""
         return int(self._scheme[0]), int(self._scheme[1])
+
+    def stage_ghost_depth(self, stage: int) -> int:
+        """Ghost layers per side that ``stage`` reads of its input: the reconstruction stencil of
+        the stage (VL2's donor-cell predictor: 1; PLM: 2; PPM: 3), all of them for CTU (its
+        transverse predictor reaches further). A decomposed run exchanges only these."""
+        if self._ctu is not None:
+            return max(self.mesh.ghosts)
+        method = int(self._ints[stage, 3])
+        return STENCIL_DEPTH[int(self._scheme[0]) if method < 0 else method]
 
     def stage_input(self, stage: int) -> np.ndarray:
         """The state ``(4, NZ, NY, NX)`` that ``stage`` reads (for VL2: ``U^n``, then ``U^{n+1/2}``)."""

@@ -41,7 +41,7 @@ from __future__ import annotations
 from numba import njit
 
 __all__ = [
-    "DONOR", "PLM", "PPM", "PPM_CS", "RECONSTRUCTIONS",
+    "DONOR", "PLM", "PPM", "PPM_CS", "RECONSTRUCTIONS", "STENCIL_DEPTH",
     "MINMOD", "VANLEER", "MC", "LIMITERS",
     "limited_slope", "cw84_slope", "cw84_monotone", "cs08_face", "cs08_parabola", "reconstruct_faces",
 ]
@@ -49,6 +49,8 @@ __all__ = [
 DONOR, PLM, PPM, PPM_CS = 0, 1, 2, 3
 #: name -> code of the reconstruction methods
 RECONSTRUCTIONS = {"donor": DONOR, "plm": PLM, "ppm": PPM, "ppm-cs": PPM_CS}
+#: code -> ghost layers the faces of the first and last domain cells read (:func:`reconstruct_faces`)
+STENCIL_DEPTH = {DONOR: 1, PLM: 2, PPM: 3, PPM_CS: 3}
 
 MINMOD, VANLEER, MC = 0, 1, 2
 #: name -> code of the PLM slope limiters

@@ -154,9 +154,10 @@ class DistributedGridEngine:
         from mpi4py import MPI
 
         local = self.local
-        rate = self.comm.allreduce(local._rate, op=MPI.MAX)
-        bad = self.comm.allreduce(int(local._bad >= 0), op=MPI.SUM)
-        if bad:
+        top = np.empty(2)
+        self.comm.Allreduce(np.array([local._rate, 1.0 if local._bad >= 0 else 0.0]), top, op=MPI.MAX)
+        rate = float(top[0])
+        if top[1] > 0:
             if local._bad >= 0:
                 try:
                     local.timestep()
@@ -164,8 +165,7 @@ class DistributedGridEngine:
                     i0, j0, k0 = self.block.offset
                     raise SimulationError(f"{exc} (block of rank {self.rank}, first cell i={i0}, j={j0}, k={k0})",
                                           state=exc.state) from None
-            raise SimulationError(f"invalid gas state on {bad} other rank(s) at time={local.t:.6g} "
-                                  f"cycle={local.cycle}")
+            raise SimulationError(f"invalid gas state on another rank at time={local.t:.6g} cycle={local.cycle}")
         return local.cfl / rate
 
     def advance(self, dt: float) -> None:
@@ -180,7 +180,7 @@ class DistributedGridEngine:
         if stage == 0 and self._inner_z_budget:
             units = budget_sections(local.budget_rows, self.block.shape)
             self._kept = [units[name].copy() for name in self._inner_z_budget]
-        self.halo.fill(local.stage_input(stage))
+        self.halo.fill(local.stage_input(stage), local.stage_ghost_depth(stage))
         local.advance_stage(stage, dt, ext)
         if stage == local.stage_count - 1 and self._inner_z_budget:
             units = budget_sections(local.budget_rows, self.block.shape)

@@ -149,6 +149,7 @@ class BlockParticleEngine(ParticleGridEngine):
         self._bad_particle = -1
         self._k_range = (_FAR, -_FAR)
         self._plan: list = []
+        self._slabs: dict[tuple, np.ndarray] = {}  # message buffers kept between steps (_slab)
         super().__init__(gas, particles, **options)
         R = self._R
         if self._nzb < R + 2:
@@ -421,10 +422,19 @@ class BlockParticleEngine(ParticleGridEngine):
 
         requests = []
         if recv is not None:
-            buf = np.empty_like(recv)
+            buf = self._slab(("recv", tag), recv.shape)
             requests.append(self.comm.Irecv(buf, source=source, tag=tag))
         if send is not None:
-            requests.append(self.comm.Isend(np.ascontiguousarray(send), dest=dest, tag=tag))
+            out = self._slab(("send", tag), send.shape)
+            np.copyto(out, send)
+            requests.append(self.comm.Isend(out, dest=dest, tag=tag))
         MPI.Request.Waitall(requests)
         if recv is not None:
             recv[...] = buf
+
+    def _slab(self, key: tuple, shape: tuple[int, ...]) -> np.ndarray:
+        """A message buffer kept between steps (:meth:`dustygas.parallel.halo.HaloExchange._buffers`)."""
+        key = (*key, shape)
+        if key not in self._slabs:
+            self._slabs[key] = np.empty(shape)
+        return self._slabs[key]
