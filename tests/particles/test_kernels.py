@@ -152,3 +152,24 @@ def test_coupled_2d_xz_box_does_not_depend_on_the_thread_count(tmp_path):
     place over pieces of the rows and its deposits over chunks of rows, both as many as threads."""
     sets = ["grid.nx=16", "grid.nz=16", "scheme.integrator=ctu", "scheme.cfl=0.8"]
     assert_identical(results_at_threads("particles.test_kernels:thread_case", tmp_path, problem="si-linA", sets=sets))
+
+
+@pytest.mark.parametrize("npiece", [1, 2, 3, 7])
+@pytest.mark.parametrize("rows", [(0, 40), (5, 31), (11, 17)])
+def test_xz_filter_equals_the_generic_filter_for_any_split(npiece, rows):
+    """The 2D x-z filter of the coupled step (rows split among ``npiece`` pieces, each filtering
+    two rows beyond its ends along x again) leaves in ``out`` exactly what the generic in-place
+    filter leaves in the field, bit for bit, for a full and for partial row windows; rows outside
+    the window are copied unchanged."""
+    from dustygas.particles.deposit import filter_field, filter_field_xz
+
+    rng = np.random.default_rng(7)
+    f = rng.random((40, 1, 36, 9))
+    k_lo, k_hi = rows
+    reference = f.copy()
+    filter_field(reference, np.array([True, False, True]), k_lo, k_hi)
+    out = np.full_like(f, np.nan)
+    kept = f.copy()
+    filter_field_xz(f, out, k_lo, k_hi, npiece)
+    assert np.array_equal(out, reference)
+    assert np.array_equal(f, kept)
