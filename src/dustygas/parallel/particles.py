@@ -42,6 +42,7 @@ from ..particles.boundaries import OUTFLOW, apply_boundaries
 from ..particles.coupling import ParticleGridEngine, add_lost
 from ..particles.interp import axis_cell
 from ..particles.store import sort_by_cell
+from .halo import MessageBuffers
 
 __all__ = ["BlockGas", "BlockParticleEngine", "z_blocks"]
 
@@ -149,7 +150,7 @@ class BlockParticleEngine(ParticleGridEngine):
         self._bad_particle = -1
         self._k_range = (_FAR, -_FAR)
         self._plan: list = []
-        self._slabs: dict[tuple, np.ndarray] = {}  # message buffers kept between steps (_slab)
+        self._buffers = MessageBuffers()  # the field rows' messages, kept between steps
         super().__init__(gas, particles, **options)
         R = self._R
         if self._nzb < R + 2:
@@ -422,19 +423,12 @@ class BlockParticleEngine(ParticleGridEngine):
 
         requests = []
         if recv is not None:
-            buf = self._slab(("recv", tag), recv.shape)
+            buf = self._buffers.get(("recv", tag), recv.shape)
             requests.append(self.comm.Irecv(buf, source=source, tag=tag))
         if send is not None:
-            out = self._slab(("send", tag), send.shape)
+            out = self._buffers.get(("send", tag), send.shape)
             np.copyto(out, send)
             requests.append(self.comm.Isend(out, dest=dest, tag=tag))
         MPI.Request.Waitall(requests)
         if recv is not None:
             recv[...] = buf
-
-    def _slab(self, key: tuple, shape: tuple[int, ...]) -> np.ndarray:
-        """A message buffer kept between steps (:meth:`dustygas.parallel.halo.HaloExchange._buffers`)."""
-        key = (*key, shape)
-        if key not in self._slabs:
-            self._slabs[key] = np.empty(shape)
-        return self._slabs[key]

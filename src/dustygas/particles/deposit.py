@@ -221,11 +221,21 @@ def _filter_into(row, m2, m1, c0, p1, p2, lo, hi):
 @njit(cache=True, error_model="numpy")
 def _filter_x(row, buf, nv):
     """:func:`filter_field` along x of one flattened row ``(NX nv)`` in place (``buf`` its length)."""
-    n = row.shape[0]
     buf[:] = row
+    _filter_x_into(buf, row, nv)
+
+
+@njit(cache=True, error_model="numpy")
+def _filter_x_into(a, x, nv):
+    """:func:`filter_field` along x of the flattened row ``a`` ``(NX nv)`` into ``x`` (its length;
+    the two outermost cells of either end copied)."""
+    n = a.shape[0]
+    e = 2 * nv
+    _copy_into(a, x, e)
+    _copy_into(a[n - e:], x[n - e:], e)
     # views at the five offsets, indexed from 0: an index `q - nv` would cost a negative-index
     # check per load and keep the loop from being vectorised (several times slower)
-    _filter_into(row[2 * nv:], buf, buf[nv:], buf[2 * nv:], buf[3 * nv:], buf[4 * nv:], 0, n - 4 * nv)
+    _filter_into(x[e:], a, a[nv:], a[e:], a[e + nv:], a[2 * e:], 0, n - 2 * e)
 
 
 @njit(cache=True, error_model="numpy")
@@ -301,20 +311,6 @@ def _copy_into(src, dst, n):
         dst[q] = src[q]
 
 
-@njit(cache=True, error_model="numpy")
-def _filter_x_piece(a, x, q0, width, nv):
-    """Elements ``q0 .. q0 + width - 1`` of the row ``a`` ``(NX nv)`` filtered along x into
-    ``x[0 .. width-1]`` (as :func:`_filter_x`: the two outermost cells of either end copied)."""
-    n = a.shape[0]
-    e = 2 * nv
-    lo = min(max(e - q0, 0), width)  # x[lo .. hi-1] are filtered
-    hi = max(min(n - e - q0, width), lo)
-    _copy_into(a[q0:], x, lo)
-    b = q0 + lo
-    _filter_into(x[lo:], a[b - e:], a[b - nv:], a[b:], a[b + nv:], a[b + e:], 0, hi - lo)
-    _copy_into(a[q0 + hi:], x[hi:], width - hi)
-
-
 @njit(cache=True, parallel=True, error_model="numpy")
 def filter_field_xz(f, out, k_lo, k_hi, npiece) -> None:
     """:func:`filter_field` of a 2D x-z field ``f`` ``(NZ, 1, NX, nv)`` (x and z active), out of
@@ -338,7 +334,7 @@ def filter_field_xz(f, out, k_lo, k_hi, npiece) -> None:
         x1 = min(min(r1, k_hi) + 2, k_hi)
         xf = np.empty((max(x1 - x0, 0), L))
         for k in range(x0, x1):
-            _filter_x_piece(a2[k], xf[k - x0], 0, L, nv)
+            _filter_x_into(a2[k], xf[k - x0], nv)
         for k in range(r0, r1):
             b = b2[k]
             if k < k_lo or k >= k_hi:
