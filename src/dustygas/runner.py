@@ -205,6 +205,9 @@ class RunLoop:
         self.progress = sys.stderr.isatty() if progress is None else bool(progress)
         self.progress_lines = progress is None and not self.progress
         self._last_history_wall = time.perf_counter()
+        # entered by run_engine around the whole run (initial outputs and restore included): a stop
+        # signal that arrives before the first step stops the run after that step with a checkpoint
+        self.stop = _StopFlag()
 
     # ----------------------------------------------------------------- outputs
     def _attrs(self) -> dict[str, Any]:
@@ -355,75 +358,75 @@ class RunLoop:
         work = 0.0
         step_wall = 0.0
         agree = getattr(eng, "agree", None)  # several ranks: combine the per-rank decisions
-        with _StopFlag() as stop:
-            try:
-                while eng.t < tlim * (1 - 1e-14):
-                    if run.max_cycles and eng.cycle - start_cycle >= run.max_cycles:
-                        status = "max_cycles"
-                        break
-                    threads.before_step()
-                    t_step = time.perf_counter()
-                    dt = float(eng.timestep())
-                    if not (dt > 0 and math.isfinite(dt)):
-                        raise SimulationError(f"invalid time step dt={dt!r} at {self._where()}")
-                    dt = min(dt, tlim - eng.t)
-                    eng.advance(dt)
-                    work += eng.work_units
-                    diagnostics = None
-                    if run.dt_history <= 0 or eng.t >= s.next_history:
-                        diagnostics = self._finite_diagnostics()
-                    now = time.perf_counter()
-                    step_wall = max(step_wall * 0.9, now - t_step)
-                    self._log_messages(threads.after_step(now - t_step, eng.work_units))
-                    if diagnostics is not None:
-                        self._record_history(diagnostics)
-                        s.next_history = _next_time(s.next_history, run.dt_history, eng.t)
-                    if eng.t >= s.next_snapshot:
-                        self._write_snapshot()
-                        s.next_snapshot = _next_time(s.next_snapshot, run.dt_snapshot, eng.t)
-                    if bar is not None:
-                        bar.n = min(eng.t, tlim)
-                        bar.set_postfix_str(f"cycle={eng.cycle} dt={dt:.3g}", refresh=False)
-                        bar.update(0)
-                    elif self.progress_lines and eng.cycle % run.log_every == 0:
-                        print(f"cycle={eng.cycle} time={eng.t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
-                    wall_ckpt = run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
-                    out_of_time = run.walltime > 0 and (now - start_wall) + 2 * step_wall >= run.walltime
-                    if agree is not None:  # every rank takes the same wall-clock and signal decisions
-                        stop.signum, wall_ckpt, out_of_time = agree((stop.take_held(), wall_ckpt, out_of_time))
-                    want_ckpt = eng.t >= s.next_checkpoint or wall_ckpt
-                    s.next_checkpoint = _next_time(s.next_checkpoint, run.dt_checkpoint, eng.t)
-                    if want_ckpt and eng.t < tlim * (1 - 1e-14):
-                        self.write_checkpoint()
-                        last_ckpt_wall = time.perf_counter()
-                    elif now - self._last_history_wall >= run.history_wall:
-                        self._write_history()
-                    if stop.signum:
-                        status = "signal"
-                        break
-                    if out_of_time:
-                        status = "walltime"
-                        break
-                if status == "finished" and s.last_snapshot_time < eng.t:
+        stop = self.stop
+        try:
+            while eng.t < tlim * (1 - 1e-14):
+                if run.max_cycles and eng.cycle - start_cycle >= run.max_cycles:
+                    status = "max_cycles"
+                    break
+                threads.before_step()
+                t_step = time.perf_counter()
+                dt = float(eng.timestep())
+                if not (dt > 0 and math.isfinite(dt)):
+                    raise SimulationError(f"invalid time step dt={dt!r} at {self._where()}")
+                dt = min(dt, tlim - eng.t)
+                eng.advance(dt)
+                work += eng.work_units
+                diagnostics = None
+                if run.dt_history <= 0 or eng.t >= s.next_history:
+                    diagnostics = self._finite_diagnostics()
+                now = time.perf_counter()
+                step_wall = max(step_wall * 0.9, now - t_step)
+                self._log_messages(threads.after_step(now - t_step, eng.work_units))
+                if diagnostics is not None:
+                    self._record_history(diagnostics)
+                    s.next_history = _next_time(s.next_history, run.dt_history, eng.t)
+                if eng.t >= s.next_snapshot:
                     self._write_snapshot()
-                self.write_checkpoint()
-            except SimulationError as exc:
-                self._dump_crash(exc)
-                raise
-            except OutputError as exc:
-                raise self._output_failed(exc) from None
-            except MemoryError:
-                exc = SimulationError(f"out of memory at {self._where()}")
-                self._dump_crash(exc)
-                raise exc from None
-            except BaseException:
-                with contextlib.suppress(Exception):  # keep the diagnostics of an unexpected stop
-                    self._write_history()
-                raise
-            finally:
+                    s.next_snapshot = _next_time(s.next_snapshot, run.dt_snapshot, eng.t)
                 if bar is not None:
-                    bar.close()
-                threads.restore()
+                    bar.n = min(eng.t, tlim)
+                    bar.set_postfix_str(f"cycle={eng.cycle} dt={dt:.3g}", refresh=False)
+                    bar.update(0)
+                elif self.progress_lines and eng.cycle % run.log_every == 0:
+                    print(f"cycle={eng.cycle} time={eng.t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
+                wall_ckpt = run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
+                out_of_time = run.walltime > 0 and (now - start_wall) + 2 * step_wall >= run.walltime
+                if agree is not None:  # every rank takes the same wall-clock and signal decisions
+                    stop.signum, wall_ckpt, out_of_time = agree((stop.take_held(), wall_ckpt, out_of_time))
+                want_ckpt = eng.t >= s.next_checkpoint or wall_ckpt
+                s.next_checkpoint = _next_time(s.next_checkpoint, run.dt_checkpoint, eng.t)
+                if want_ckpt and eng.t < tlim * (1 - 1e-14):
+                    self.write_checkpoint()
+                    last_ckpt_wall = time.perf_counter()
+                elif now - self._last_history_wall >= run.history_wall:
+                    self._write_history()
+                if stop.signum:
+                    status = "signal"
+                    break
+                if out_of_time:
+                    status = "walltime"
+                    break
+            if status == "finished" and s.last_snapshot_time < eng.t:
+                self._write_snapshot()
+            self.write_checkpoint()
+        except SimulationError as exc:
+            self._dump_crash(exc)
+            raise
+        except OutputError as exc:
+            raise self._output_failed(exc) from None
+        except MemoryError:
+            exc = SimulationError(f"out of memory at {self._where()}")
+            self._dump_crash(exc)
+            raise exc from None
+        except BaseException:
+            with contextlib.suppress(Exception):  # keep the diagnostics of an unexpected stop
+                self._write_history()
+            raise
+        finally:
+            if bar is not None:
+                bar.close()
+            threads.restore()
         wall = time.perf_counter() - start_wall
         cycles = eng.cycle - start_cycle
         throughput = work / wall if wall > 0 else 0.0
@@ -493,35 +496,36 @@ def run_engine(
         raise UserError(f"problem {cfg.problem_name} does not run on several MPI ranks yet "
                         "(the grid and particle-grid problems do): run it with one process")
     loop = RunLoop(engine, cfg, rundir, progress)
-    try:
-        if restart_from is None:
-            agreed(lambda: rundir.create(overwrite))
-            rundir.write_config(config_text(cfg))
-            rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
-            _log_takeover(rundir)
-            try:
-                if branch_from is None:
-                    loop.start()
-                else:
-                    loop.branch(*branch_from)
-            except SimulationError as exc:  # e.g. an invalid initial state: dump it like any other
-                loop._dump_crash(exc)
-                raise
-        else:
-            rundir.lock()
-            loop.restore(*restart_from)
-            rundir.write_config(config_text(cfg))
-            rundir.log(f"restart at time={engine.t:.6g} cycle={engine.cycle} pid={os.getpid()}")
-            _log_takeover(rundir)
-        result = loop.loop()
-        label = result.work_label or "updates"
-        rundir.log(
-            f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.3g}s "
-            f"throughput={result.throughput:.4g} {label}/s threads={result.threads}"
-        )
-        return result
-    finally:
-        rundir.unlock()
+    with loop.stop:  # from the first output on, SIGTERM/Ctrl-C stop the run with a checkpoint
+        try:
+            if restart_from is None:
+                agreed(lambda: rundir.create(overwrite))
+                rundir.write_config(config_text(cfg))
+                rundir.log(f"dustygas {__version__} problem={cfg.problem_name} pid={os.getpid()}")
+                _log_takeover(rundir)
+                try:
+                    if branch_from is None:
+                        loop.start()
+                    else:
+                        loop.branch(*branch_from)
+                except SimulationError as exc:  # e.g. an invalid initial state: dump it like any other
+                    loop._dump_crash(exc)
+                    raise
+            else:
+                rundir.lock()
+                loop.restore(*restart_from)
+                rundir.write_config(config_text(cfg))
+                rundir.log(f"restart at time={engine.t:.6g} cycle={engine.cycle} pid={os.getpid()}")
+                _log_takeover(rundir)
+            result = loop.loop()
+            label = result.work_label or "updates"
+            rundir.log(
+                f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.3g}s "
+                f"throughput={result.throughput:.4g} {label}/s threads={result.threads}"
+            )
+            return result
+        finally:
+            rundir.unlock()
 
 
 def _log_takeover(rundir: RunDirectory) -> None:
