@@ -20,7 +20,7 @@ import numpy as np
 
 from .decomposition import Decomposition
 
-__all__ = ["HaloExchange", "MessageBuffers"]
+__all__ = ["HaloExchange", "MessageBuffers", "exchange_both_ways"]
 
 
 class MessageBuffers:
@@ -41,6 +41,41 @@ class MessageBuffers:
         if key not in self._kept:
             self._kept[key] = np.empty(shape)
         return self._kept[key]
+
+
+def exchange_both_ways(comm, lower: int | None, upper: int | None, to_lower: np.ndarray | None,
+                       to_upper: np.ndarray | None, tag: int) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """Send a float64 table to each neighbour and receive theirs, of any length, in one round.
+
+    ``to_lower`` goes to rank ``lower`` and ``to_upper`` to rank ``upper`` (None: no neighbour
+    there, nothing sent); each neighbour's table comes back flat (the caller knows its width),
+    ``(from the lower, from the upper)``, None where there is no neighbour. The receive learns the
+    length from the message itself (``MPI_Mprobe``), so the lengths are not exchanged first. With
+    two blocks around a periodic axis ``lower == upper`` and the tags tell the messages apart.
+
+    A table as raw doubles instead of a pickled tuple of arrays: on two ranks of this machine a
+    pickled exchange of 1000 particles' attributes both ways took 168 us, of 16 particles 54 us
+    (2026-12-04).
+    """
+    from mpi4py import MPI
+
+    requests, sent = [], []
+    for table, dest, my_tag in ((to_lower, lower, tag), (to_upper, upper, tag + 1)):
+        if dest is not None:
+            sent.append(np.ascontiguousarray(table, dtype=np.float64))  # held until the sends complete
+            requests.append(comm.Isend(sent[-1], dest=dest, tag=my_tag))
+    got = []
+    for source, their_tag in ((lower, tag + 1), (upper, tag)):  # the lower sends its table "up", ...
+        if source is None:
+            got.append(None)
+            continue
+        status = MPI.Status()
+        message = comm.Mprobe(source=source, tag=their_tag, status=status)
+        table = np.empty(status.Get_count(MPI.DOUBLE))
+        message.Recv(table)
+        got.append(table)
+    MPI.Request.Waitall(requests)
+    return got[0], got[1]
 
 
 class HaloExchange:
@@ -94,16 +129,19 @@ class HaloExchange:
             ghost_lo, ghost_hi = layers(g - d, g), layers(n + g, n + g + d)
             lo_rank = MPI.PROC_NULL if lo is None else lo
             hi_rank = MPI.PROC_NULL if hi is None else hi
-            send = self._buffers.get(("send", axis), u[first].shape)
-            recv = self._buffers.get(("recv", axis), u[first].shape)
-            # my first layers go down (the lower block's upper ghosts), the upper block's come up
-            np.copyto(send, u[first])
-            self.comm.Sendrecv(send, dest=lo_rank, sendtag=2 * axis, recvbuf=recv, source=hi_rank,
-                               recvtag=2 * axis)
+            # my first layers go down (the lower block's upper ghosts), my last ones up; both ways
+            # in one round
+            shape = u[first].shape
+            down, up = self._buffers.get(("down", axis), shape), self._buffers.get(("up", axis), shape)
+            from_hi, from_lo = self._buffers.get(("from_hi", axis), shape), self._buffers.get(("from_lo", axis), shape)
+            requests = [self.comm.Irecv(from_hi, source=hi_rank, tag=2 * axis),
+                        self.comm.Irecv(from_lo, source=lo_rank, tag=2 * axis + 1)]
+            np.copyto(down, u[first])
+            np.copyto(up, u[last])
+            requests += [self.comm.Isend(down, dest=lo_rank, tag=2 * axis),
+                         self.comm.Isend(up, dest=hi_rank, tag=2 * axis + 1)]
+            MPI.Request.Waitall(requests)
             if hi is not None:
-                u[ghost_hi] = recv
-            np.copyto(send, u[last])
-            self.comm.Sendrecv(send, dest=hi_rank, sendtag=2 * axis + 1, recvbuf=recv, source=lo_rank,
-                               recvtag=2 * axis + 1)
+                u[ghost_hi] = from_hi
             if lo is not None:
-                u[ghost_lo] = recv
+                u[ghost_lo] = from_lo

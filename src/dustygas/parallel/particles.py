@@ -42,7 +42,7 @@ from ..particles.boundaries import OUTFLOW, apply_boundaries
 from ..particles.coupling import ParticleGridEngine, add_lost
 from ..particles.interp import axis_cell
 from ..particles.store import sort_by_cell
-from .halo import MessageBuffers
+from .halo import exchange_both_ways
 
 __all__ = ["BlockGas", "BlockParticleEngine", "z_blocks"]
 
@@ -71,6 +71,73 @@ def z_blocks(pos, n, z0, dz, nz, cuts, leaving, out) -> None:
         while b < nb - 1 and k >= cuts[b + 1]:
             b += 1
         out[p] = b
+
+
+#: the rows of a particle table (:meth:`BlockParticleEngine._pack`): integers travel as their
+#: bits (the id, the sort key) or exactly (the species); the key row only in migration
+_COLUMNS = ("x", "y", "z", "vx", "vy", "vz", "mass", "species", "pid", "key")
+_KEY = 9
+
+
+def _halo_parts(msg: np.ndarray, width: int) -> tuple[np.ndarray, np.ndarray]:
+    """The particle table (:data:`_COLUMNS` without the key) and the records table of a halo
+    message (:meth:`BlockParticleEngine._halo_message`): rows cell x, y, z, source, dvy and the
+    ``width`` weights."""
+    k, r = int(msg[0]), int(msg[1])
+    return msg[2:2 + _KEY * k].reshape(_KEY, k), msg[2 + _KEY * k:].reshape(5 + width, r)
+
+
+def _unpack(table: np.ndarray) -> tuple:
+    """``(pos, vel, species, pid, mass)`` of a particle table, as :meth:`ParticleStore.append` takes them."""
+    return (table[0:3], table[3:6], table[7].astype(np.int32), np.ascontiguousarray(table[8]).view(np.int64),
+            table[6])
+
+
+@njit(cache=True, error_model="numpy")
+def migration_lists(dest, n, block, lo, hi, moving, keep) -> tuple[int, int, int, int]:
+    """Sort particles ``0 .. n-1`` by the block ``dest[p]`` their cell lies in (:func:`z_blocks`):
+    ``moving[:n_down]`` the indices of those for the lower neighbour ``lo``, ``moving[n_down:
+    n_down + n_up]`` those for the upper one ``hi`` (-1: no neighbour; with two blocks around a
+    periodic axis ``lo == hi`` and all go "down"); ``keep[p]`` whether it stays (its own block, a
+    non-finite position, or a stray that jumped past the neighbours: it stays, never clamped, and
+    the check after the sort stops the run; a particle leaving the box, ``dest[p] == -1``, does
+    not). Returns ``(n_down, n_up, first stray or -1, number not kept)``."""
+    n_down = 0
+    stray = -1
+    gone = 0
+    for p in range(n):
+        d = dest[p]
+        go = d >= 0 and d != block and d == lo
+        keep[p] = not go and d != -1
+        if not keep[p]:
+            gone += 1
+        if go:
+            moving[n_down] = p
+            n_down += 1
+    n_up = 0
+    for p in range(n):
+        d = dest[p]
+        if keep[p] and d >= 0 and d != block:
+            if d == hi:
+                keep[p] = False
+                gone += 1
+                moving[n_down + n_up] = p
+                n_up += 1
+            elif stray < 0:
+                stray = p
+    return n_down, n_up, stray, gone
+
+
+@njit(cache=True, error_model="numpy")
+def compact_keys(keys, n, keep) -> int:
+    """Move ``keys[p]`` of the kept particles of ``0 .. n-1`` to the front in order (as
+    :func:`~dustygas.particles.store.compact` moves the particles); returns their number."""
+    m = 0
+    for p in range(n):
+        if keep[p]:
+            keys[m] = keys[p]
+            m += 1
+    return m
 
 
 class BlockGas:
@@ -129,8 +196,6 @@ class BlockParticleEngine(ParticleGridEngine):
     """
 
     def __init__(self, gas, particles, comm, cuts, block: int, ranks, periodic_z: bool, **options):
-        from mpi4py import MPI
-
         self.comm = comm
         self._cuts = np.asarray(cuts, dtype=np.int64)
         self._block = int(block)
@@ -141,16 +206,16 @@ class BlockParticleEngine(ParticleGridEngine):
         lo = block - 1 if block > 0 else (nb - 1 if periodic_z and nb > 1 else None)
         hi = block + 1 if block < nb - 1 else (0 if periodic_z and nb > 1 else None)
         self._lo_block, self._hi_block = lo, hi
-        self._lo_rank = MPI.PROC_NULL if lo is None else int(ranks[lo])
-        self._hi_rank = MPI.PROC_NULL if hi is None else int(ranks[hi])
+        self._lo_rank = None if lo is None else int(ranks[lo])  # None: no neighbour on that side
+        self._hi_rank = None if hi is None else int(ranks[hi])
         self._periodic_z = bool(periodic_z)
         self._gkey = np.zeros(0, dtype=np.int64)
         self._dest = np.zeros(0, dtype=np.int64)
+        self._moving = np.zeros(0, dtype=np.int64)
         self._stray = -1
         self._bad_particle = -1
         self._k_range = (_FAR, -_FAR)
         self._plan: list = []
-        self._buffers = MessageBuffers()  # the field rows' messages, kept between steps
         super().__init__(gas, particles, **options)
         R = self._R
         if self._nzb < R + 2:
@@ -175,7 +240,8 @@ class BlockParticleEngine(ParticleGridEngine):
             if was is not None:
                 k = min(was.shape[0], capacity)
                 new[:k] = was[:k]
-        for name in ("_gkey", "_dest"):
+        self._keep = np.zeros(capacity, dtype=np.bool_)
+        for name in ("_gkey", "_dest", "_moving"):
             was = getattr(self, name)
             new = np.zeros(capacity, dtype=np.int64)
             new[:min(was.shape[0], capacity)] = was[:capacity]
@@ -217,35 +283,47 @@ class BlockParticleEngine(ParticleGridEngine):
                 f, m, v = (np.concatenate([x[i] for x in leaving], axis=-1) for i in range(3))
                 add_lost(self.lost, f, m, v, range(4))
         dest = self._owners(pos, n, self._leaving)
-        stay = (dest == self._block) | (dest == -2)
-        down = (dest == self._lo_block) if self._lo_block is not None else np.zeros(n, dtype=np.bool_)
-        up = (dest == self._hi_block) & ~down if self._hi_block is not None else np.zeros(n, dtype=np.bool_)
-        stray = (dest >= 0) & ~stay & ~down & ~up
-        if np.any(stray):
-            first = int(np.argmax(stray))
-            self._stray = int(pid[first])
-            self._stray_to = int(dest[first])
-            stay |= stray  # kept where it is (never clamped): the check after the sort stops the run
-        outgoing = [self._pack(sel) for sel in (down, up)]
-        if not np.all(stay):
-            gk = self._gkey[:n][stay]
-            p.remove(stay)
-            self._gkey[:gk.shape[0]] = gk
-        recv_up = self.comm.sendrecv(outgoing[0], dest=self._lo_rank, sendtag=31, source=self._hi_rank, recvtag=31)
-        recv_down = self.comm.sendrecv(outgoing[1], dest=self._hi_rank, sendtag=32, source=self._lo_rank,
-                                       recvtag=32)
-        for got in (recv_down, recv_up):
-            if got is not None and got[3].shape[0]:
+        lo = -1 if self._lo_block is None else self._lo_block
+        hi = -1 if self._hi_block is None else self._hi_block
+        n_down, n_up, stray, gone = migration_lists(dest, n, self._block, lo, hi, self._moving, self._keep)
+        if stray >= 0:
+            self._stray = int(pid[stray])
+            self._stray_to = int(dest[stray])
+        moving = self._moving
+        outgoing = (self._pack(moving[:n_down], self._gkey), self._pack(moving[n_down:n_down + n_up], self._gkey))
+        if gone:
+            keep = self._keep[:n]
+            p.remove(keep)
+            compact_keys(self._gkey, n, keep)
+        for got in self._both_ways(outgoing, tag=31):  # from the lower block first
+            if got is not None and got.size:
+                got = got.reshape(len(_COLUMNS), -1)
                 start = p.n
-                p.append(*got[:5])
+                p.append(*_unpack(got))
                 if p.capacity > self._capacity:
                     self._allocate(p.capacity)
-                self._gkey[start:p.n] = got[5]
+                self._gkey[start:p.n] = got[_KEY].view(np.int64)
 
-    def _pack(self, sel: np.ndarray):
-        """Every attribute of the selected particles (and their keys of the last sort)."""
+    def _both_ways(self, outgoing, tag: int) -> tuple:
+        """``outgoing[0]`` to the lower neighbour, ``outgoing[1]`` to the upper one, theirs back
+        flat (:func:`~dustygas.parallel.halo.exchange_both_ways`): ``(from the lower, from the
+        upper)``, None where there is no neighbour."""
+        return exchange_both_ways(self.comm, self._lo_rank, self._hi_rank, outgoing[0], outgoing[1], tag)
+
+    def _pack(self, sel: np.ndarray, keys: np.ndarray | None = None) -> np.ndarray:
+        """Every attribute of the particles ``sel`` (indices or a range), and ``keys[sel]`` if
+        given, as a table of rows :data:`_COLUMNS` (:func:`_unpack`)."""
         p = self.particles
-        return (p.pos[:, sel], p.vel[:, sel], p.species[sel], p.pid[sel], p.mass[sel], self._gkey[:p.n][sel])
+        pos, vel, species, pid, mass = p.buffers()
+        table = np.empty((_KEY + (keys is not None), pos[0, sel].shape[0]))
+        table[0:3] = pos[:, sel]
+        table[3:6] = vel[:, sel]
+        table[6] = mass[sel]
+        table[7] = species[sel]
+        table[8] = pid[sel].view(np.float64)
+        if keys is not None:
+            table[_KEY] = keys[sel].view(np.float64)
+        return table
 
     def resort(self) -> None:
         """Sort the block's particles at their present positions, as the serial run's outputs
@@ -306,58 +384,64 @@ class BlockParticleEngine(ParticleGridEngine):
             msgs[0], ranges[0] = self._halo_message(m, 0, R)
         if self._hi_block is not None:
             msgs[1], ranges[1] = self._halo_message(m, nzb - R, nzb)
-        from_above = self.comm.sendrecv(msgs[0], dest=self._lo_rank, sendtag=41, source=self._hi_rank, recvtag=41)
-        from_below = self.comm.sendrecv(msgs[1], dest=self._hi_rank, sendtag=42, source=self._lo_rank, recvtag=42)
-        got = [(from_above, nzb), None if from_below is None else (from_below, -self._block_rows_of(self._lo_block))]
-        got = [g for g in got if g is not None and g[0] is not None]
-        nsrc = sum(msg[0][3].shape[0] for msg, _ in got)
-        nrec = sum(msg[1].shape[0] for msg, _ in got)
+        from_below, from_above = self._both_ways(msgs, tag=41)
+        width = self._img_w.shape[1] * self._img_w.shape[2]
+        got = [] if from_above is None else [(_halo_parts(from_above, width), nzb, "above")]
+        if from_below is not None:
+            got.append((_halo_parts(from_below, width), -self._block_rows_of(self._lo_block), "below"))
+        nsrc = sum(parts.shape[1] for (parts, _), _, _ in got)
+        nrec = sum(records.shape[1] for (_, records), _, _ in got)
         if n + nsrc > p.capacity:
             p.reserve(max(n + nsrc, 2 * p.capacity))
         if p.capacity > self._capacity:
             self._allocate(p.capacity)
         self._grow_images(m + nrec)
         pos, vel, species, pid, mass = p.buffers()
-        slots = {}
+        slots = {"above": (0, 0), "below": (0, 0)}
         s0, r0 = n, m
-        for msg, shift in got:
-            (spos, svel, sspec, spid, smass), cell, src, w, dvy = msg
-            k, r = spid.shape[0], cell.shape[0]
-            pos[:, s0:s0 + k], vel[:, s0:s0 + k] = spos, svel
-            species[s0:s0 + k], pid[s0:s0 + k], mass[s0:s0 + k] = sspec, spid, smass
-            self._img_cell[r0:r0 + r] = cell
+        for (parts, records), shift, side in got:
+            k, r = parts.shape[1], records.shape[1]
+            pos[:, s0:s0 + k], vel[:, s0:s0 + k], species[s0:s0 + k], pid[s0:s0 + k], mass[s0:s0 + k] = \
+                _unpack(parts)
+            self._img_cell[r0:r0 + r] = records[0:3].T.astype(np.int64)
             self._img_cell[r0:r0 + r, 2] += shift
-            self._img_src[r0:r0 + r] = src + s0
-            self._img_w[r0:r0 + r] = w
-            self._img_dvy[r0:r0 + r] = dvy
-            slots[id(msg)] = (s0, k)
+            self._img_src[r0:r0 + r] = records[3].astype(np.int64) + s0
+            self._img_dvy[r0:r0 + r] = records[4]
+            self._img_w[r0:r0 + r] = records[5:].T.reshape(r, *self._img_w.shape[1:])
+            slots[side] = (s0, k)
             s0, r0 = s0 + k, r0 + r
         self._n_halo = s0 - n
-        above = slots.get(id(from_above)) if from_above is not None else None
-        below = slots.get(id(from_below)) if from_below is not None else None
-        self._plan = [ranges, above or (0, 0), below or (0, 0)]
+        self._plan = [ranges, slots["above"], slots["below"]]
         return r0
 
     def _block_rows_of(self, b: int) -> int:
         return int(self._cuts[b + 1] - self._cuts[b])
 
-    def _halo_message(self, m: int, k_a: int, k_b: int):
+    def _halo_message(self, m: int, k_a: int, k_b: int) -> tuple[np.ndarray, tuple[int, int]]:
         """The particles of rows ``k_a .. k_b-1`` and every record in those rows (cells with the
-        row in this block's numbering, source index relative to the first particle)."""
-        p = self.particles
+        row in this block's numbering, source index relative to the first particle), as one flat
+        message (:func:`_halo_parts`), and the particles' index range."""
         nx, ny, _ = self.geometry.shape
         cs = self._cell_start
         a, b = int(cs[k_a * nx * ny]), int(cs[k_b * nx * ny])
-        keys = self._keys[a:b]
+        k = b - a
         sel = np.nonzero((self._img_cell[:m, 2] >= k_a) & (self._img_cell[:m, 2] < k_b))[0]
-        reals = np.stack([keys % nx, (keys // nx) % ny, keys // (nx * ny)], axis=1)
-        cell = np.concatenate([reals, self._img_cell[sel]])
-        src = np.concatenate([np.arange(b - a, dtype=np.int64), self._img_src[sel] - a])
-        w = np.concatenate([self._wts[a:b], self._img_w[sel]])
-        dvy = np.concatenate([np.zeros(b - a), self._img_dvy[sel]])
-        pos, vel, species, pid, mass = p.buffers()
-        parts = (pos[:, a:b].copy(), vel[:, a:b].copy(), species[a:b].copy(), pid[a:b].copy(), mass[a:b].copy())
-        return (parts, cell, src, w, dvy), (a, b)
+        r = k + sel.shape[0]
+        width = self._img_w.shape[1] * self._img_w.shape[2]
+        msg = np.empty(2 + _KEY * k + (5 + width) * r)
+        msg[0], msg[1] = k, r
+        msg[2:2 + _KEY * k] = self._pack(slice(a, b)).ravel()
+        records = msg[2 + _KEY * k:].reshape(5 + width, r)
+        keys = self._keys[a:b]
+        records[0, :k], records[1, :k], records[2, :k] = keys % nx, (keys // nx) % ny, keys // (nx * ny)
+        records[0:3, k:] = self._img_cell[sel].T
+        records[3, :k] = np.arange(k)
+        records[3, k:] = self._img_src[sel] - a
+        records[4, :k] = 0.0
+        records[4, k:] = self._img_dvy[sel]
+        records[5:, :k] = self._wts[a:b].reshape(k, width).T
+        records[5:, k:] = self._img_w[sel].reshape(-1, width).T
+        return msg, (a, b)
 
     def _kicked(self, n: int) -> None:
         """The drag deposits of this block's boundary particles to the neighbours that hold them."""
@@ -365,14 +449,11 @@ class BlockParticleEngine(ParticleGridEngine):
             return
         ranges, above, below = self._plan
         vals = self._values
-        mine = [np.ascontiguousarray(vals[a:b, :3]) if b > a else None for a, b in ranges]
-        got_above = self.comm.sendrecv(mine[0] if self._lo_block is not None else None, dest=self._lo_rank,
-                                       sendtag=51, source=self._hi_rank, recvtag=51)
-        got_below = self.comm.sendrecv(mine[1] if self._hi_block is not None else None, dest=self._hi_rank,
-                                       sendtag=52, source=self._lo_rank, recvtag=52)
+        mine = [vals[a:b, :3] for a, b in ranges]
+        got_below, got_above = self._both_ways(mine, tag=51)
         for got, (s0, k) in ((got_above, above), (got_below, below)):
             if got is not None and k:
-                vals[s0:s0 + k, :3] = got
+                vals[s0:s0 + k, :3] = got.reshape(k, 3)
 
     # ------------------------------------------------------------------ rows and field halos
     def _occupied_rows(self, n: int, margin: int) -> tuple[int, int]:
@@ -413,22 +494,16 @@ class BlockParticleEngine(ParticleGridEngine):
         recv_up = hi is not None and self._padded_of(self._block, rows, gz)[1] > nzb + gz
         send_up = hi is not None and self._padded_of(hi, rows, gz)[0] < gz
         recv_down = lo is not None and self._padded_of(self._block, rows, gz)[0] < gz
-        self._rows_exchange(field[gz:2 * gz] if send_down else None, self._lo_rank,
-                            field[nzb + gz:nzb + 2 * gz] if recv_up else None, self._hi_rank, 61)
-        self._rows_exchange(field[nzb:nzb + gz] if send_up else None, self._hi_rank,
-                            field[:gz] if recv_down else None, self._lo_rank, 62)
-
-    def _rows_exchange(self, send, dest, recv, source, tag) -> None:
+        # one round, straight from and into the field: its rows (axis 0) are contiguous slabs
         from mpi4py import MPI
 
         requests = []
-        if recv is not None:
-            buf = self._buffers.get(("recv", tag), recv.shape)
-            requests.append(self.comm.Irecv(buf, source=source, tag=tag))
-        if send is not None:
-            out = self._buffers.get(("send", tag), send.shape)
-            np.copyto(out, send)
-            requests.append(self.comm.Isend(out, dest=dest, tag=tag))
+        if recv_up:
+            requests.append(self.comm.Irecv(field[nzb + gz:nzb + 2 * gz], source=self._hi_rank, tag=61))
+        if recv_down:
+            requests.append(self.comm.Irecv(field[:gz], source=self._lo_rank, tag=62))
+        if send_down:
+            requests.append(self.comm.Isend(field[gz:2 * gz], dest=self._lo_rank, tag=61))
+        if send_up:
+            requests.append(self.comm.Isend(field[nzb:nzb + gz], dest=self._hi_rank, tag=62))
         MPI.Request.Waitall(requests)
-        if recv is not None:
-            recv[...] = buf
