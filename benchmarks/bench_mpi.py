@@ -9,6 +9,7 @@ within each repeat, best of ``--repeat`` kept:
               periodic x: 2 ranks split z), 40 steps;
 * ``part``    a 3D particle box, ``si-AB-3d`` at 32^3 (Johansen & Youdin's run AB: uniform gas
               and 32,768 randomly placed particles, one per cell, periodic z), 40 steps;
+* ``part64``  the same at 64^3 (262,144 particles);
 * ``layer``   the settled layer of ``si3d`` at 32 x 32 x 48 (the particles within a few cells
               of the midplane, outflow z faces), 40 steps: the z cuts balance cells + particles.
 
@@ -41,6 +42,7 @@ CASES = {
     "sound": ["soundwave-3d", *GRID],
     "shear": ["epicycle", *GRID, "--set", "scheme.cfl=0.3", "--set", "shearing_box.orbital_advection=true"],
     "part": ["si-AB-3d", *QUIET],
+    "part64": ["si-AB-3d", *GRID],
     "layer": ["si3d", *QUIET],
 }
 
