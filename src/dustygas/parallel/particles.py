@@ -24,6 +24,8 @@ cell of the block receives is the serial run's, bit for bit:
   drag deposit are exchanged, unfiltered, in the ghost rows of the face (``R + 2`` and ``2``
   rows), before the ghosts of the other axes are filled and the grid-scale filter runs: its
   value at a row depends on the two rows on either side only;
+* every particle message is a table of doubles exchanged with both neighbours in one round
+  (:func:`~dustygas.parallel.halo.exchange_both_ways`; integers travel as their bits or exactly);
 * the rows of the thin-layer optimisation (:func:`~dustygas.particles.push.occupied_rows`) and
   the checks of the sort are agreed by all ranks in one ``Allreduce`` per step.
 
@@ -44,7 +46,7 @@ from ..particles.interp import axis_cell
 from ..particles.store import sort_by_cell
 from .halo import exchange_both_ways
 
-__all__ = ["BlockGas", "BlockParticleEngine", "z_blocks"]
+__all__ = ["BlockGas", "BlockParticleEngine", "compact_keys", "migration_lists", "z_blocks"]
 
 #: a row index beyond any mesh (no particle on a rank)
 _FAR = 1 << 40
