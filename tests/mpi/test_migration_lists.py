@@ -4,7 +4,7 @@
 import numpy as np
 import pytest
 
-from dustygas.parallel.particles import compact_keys, migration_lists
+from dustygas.parallel.particles import migration_lists
 
 
 def _lists(dest, block, lo, hi):
@@ -39,10 +39,3 @@ def test_two_blocks_around_a_periodic_axis_and_the_ends(lo, hi):
         assert down == [] and up == [] and stray == 1
     assert gone == 1 + (len(crossing) if stray < 0 else 0)
     assert sum(keep) == len(dest) - gone
-
-
-def test_compact_keys_keeps_the_order_of_the_kept():
-    keys = np.array([10, 11, 12, 13, 14, 15], dtype=np.int64)
-    keep = np.array([True, False, True, True, False, True])
-    m = compact_keys(keys, 6, keep)
-    assert m == 4 and list(keys[:m]) == [10, 12, 13, 15]

@@ -46,7 +46,7 @@ from ..particles.interp import axis_cell
 from ..particles.store import sort_by_cell
 from .halo import exchange_both_ways
 
-__all__ = ["BlockGas", "BlockParticleEngine", "compact_keys", "migration_lists", "z_blocks"]
+__all__ = ["BlockGas", "BlockParticleEngine", "migration_lists", "z_blocks"]
 
 #: a row index beyond any mesh (no particle on a rank)
 _FAR = 1 << 40
@@ -128,18 +128,6 @@ def migration_lists(dest, n, block, lo, hi, moving, keep) -> tuple[int, int, int
             elif stray < 0:
                 stray = p
     return n_down, n_up, stray, gone
-
-
-@njit(cache=True, error_model="numpy")
-def compact_keys(keys, n, keep) -> int:
-    """Move ``keys[p]`` of the kept particles of ``0 .. n-1`` to the front in order (as
-    :func:`~dustygas.particles.store.compact` moves the particles); returns their number."""
-    m = 0
-    for p in range(n):
-        if keep[p]:
-            keys[m] = keys[p]
-            m += 1
-    return m
 
 
 class BlockGas:
@@ -295,8 +283,8 @@ class BlockParticleEngine(ParticleGridEngine):
         outgoing = (self._pack(moving[:n_down], self._gkey), self._pack(moving[n_down:n_down + n_up], self._gkey))
         if gone:
             keep = self._keep[:n]
+            self._gkey[:n - gone] = self._gkey[:n][keep]  # the keys go with their particles
             p.remove(keep)
-            compact_keys(self._gkey, n, keep)
         for got in self._both_ways(outgoing, tag=31):  # from the lower block first
             if got is not None and got.size:
                 got = got.reshape(len(_COLUMNS), -1)
