@@ -133,7 +133,8 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     fluxes of the boundary faces, stored by the z sweep in ``zflux``, ``(2, 4, ny, nx)``), each
     weighted with the stage's share of the step. ``oa_rate`` is ``q Omega`` under orbital advection
     (0: off). ``nthreads`` is the number of chunks the pencils are split into (results do not
-    depend on it; numba cannot cache a function that asks for it itself).
+    depend on it; numba cannot cache a function that asks for it itself): with a z axis, slabs of
+    z planes, each running every sweep of the stage in its planes (the z pencils in segments).
 
     Returns
     -------
@@ -149,7 +150,12 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     last_axis = 2 if nz > 1 else (1 if ny > 1 else 0)
     # the Courant rate of the new state: per pencil of the step's last sweep (or per column of
     # the orbital-advection remap), plus the radial edge cells after their flux correction
-    nrate = nx * nz if remap else pencil_count(last_axis, lay)
+    first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
+    # z slabs: with a z axis and a first sweep along x or y, each thread runs every sweep of its
+    # slab of z planes (the z pencils in segments): one parallel region per stage, and the cells a
+    # thread writes are the same in every sweep (and in the particle kernels, which split rows too)
+    nslab = min(nz, nthreads) if nz > 1 and first_axis != 2 else 1
+    nrate = nx * nz if remap else pencil_count(last_axis, lay) * nslab
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
     rates = np.zeros(nrate)
     bads = np.full(nrate, -1, dtype=np.int64)
@@ -167,23 +173,45 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         # 1. ghost zones of the input state (in parallel where there is enough work)
         fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
         # 2. one sweep per active axis; the first one writes base, sources and ext
-        first = True
-        first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
         y_source = np.zeros(pencil_count(first_axis, lay))
-        for axis in range(3):
-            n_axis = nx if axis == 0 else (ny if axis == 1 else nz)
-            if n_axis == 1:
-                continue
-            npen = pencil_count(axis, lay)
-            nchunk = min(npen, nthreads)
-            store = (shearing and axis == 0) or (open_z and axis == 2)
-            faces = zflux if axis == 2 else bflux
-            want_rate = finish and s == s_hi - 1 and axis == last_axis and not remap
-            for c in prange(nchunk):
-                sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext,
-                              faces, store, y_source, rates, bads, want_rate, shearing,
-                              c * npen // nchunk, (c + 1) * npen // nchunk)
-            first = False
+        last_stage = finish and s == s_hi - 1 and not remap
+        if nslab > 1:
+            for c in prange(nslab):
+                k0, k1 = c * nz // nslab, (c + 1) * nz // nslab
+                first = True
+                for axis in range(3):
+                    n_axis = nx if axis == 0 else (ny if axis == 1 else nz)
+                    if n_axis == 1:
+                        continue
+                    store = (shearing and axis == 0) or (open_z and axis == 2)
+                    faces = zflux if axis == 2 else bflux
+                    want_rate = last_stage and axis == last_axis
+                    if axis == 2:  # every z pencil, in the slab's cells
+                        sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext,
+                                      use_ext, faces, store, y_source, rates, bads, want_rate, shearing,
+                                      0, nx * ny, k0, k1, c, nslab)
+                    else:  # the x (y) pencils of planes k0 .. k1-1: pencil p = j + ny k (i + nx k)
+                        na = ny if axis == 0 else nx
+                        sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext,
+                                      use_ext, faces, store, y_source, rates, bads, want_rate, shearing,
+                                      k0 * na, k1 * na, 0, n_axis, 0, 1)
+                    first = False
+        else:
+            first = True
+            for axis in range(3):
+                n_axis = nx if axis == 0 else (ny if axis == 1 else nz)
+                if n_axis == 1:
+                    continue
+                npen = pencil_count(axis, lay)
+                nchunk = min(npen, nthreads)
+                store = (shearing and axis == 0) or (open_z and axis == 2)
+                faces = zflux if axis == 2 else bflux
+                want_rate = last_stage and axis == last_axis
+                for c in prange(nchunk):
+                    sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext,
+                                  faces, store, y_source, rates, bads, want_rate, shearing,
+                                  c * npen // nchunk, (c + 1) * npen // nchunk, 0, n_axis, 0, 1)
+                first = False
         # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
         #    step's net update, like the VL2 predictor: conservation needs only the others)
         if shearing and weight != 0.0:

@@ -118,8 +118,9 @@ def pencil_count(axis: int, lay) -> int:
 
 @njit(cache=True, error_model="numpy")
 def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc, zc, ext, use_ext, bflux,
-                  store_bflux, y_source, rates, bads, want_rate, skip_radial_edges, p0, p1):
-    """Add the flux differences along ``axis`` of ``src`` to ``dst`` for pencils ``p0 .. p1-1``.
+                  store_bflux, y_source, rates, bads, want_rate, skip_radial_edges, p0, p1, c0, c1, seg, nseg):
+    """Add the flux differences along ``axis`` of ``src`` to ``dst`` for pencils ``p0 .. p1-1``,
+    in their domain cells ``c0 .. c1-1`` along ``axis`` (a *segment*; ``0, n``: the whole pencil).
 
     Parameters
     ----------
@@ -158,16 +159,25 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
     p0, p1
         Range of pencils; pencil ``p`` has transverse domain indices ``(p % na, p // na)``
         (``(j, k)`` for x, ``(i, k)`` for y, ``(i, j)`` for z).
+    c0, c1, seg, nseg
+        The segment: domain cells ``c0 .. c1-1`` along ``axis`` (read with the stencil's ghosts
+        either side, so a segment's faces are computed from the same cells, bit for bit, as the
+        whole pencil's), segment ``seg`` of ``nseg`` along each pencil: its rate goes to
+        ``rates[p nseg + seg]`` (pencil order, then segment order: the first invalid cell of the
+        step stays the first in pencil order); a stored boundary flux is the first face's if
+        ``c0 = 0`` and the last face's if ``c1 = n``. A first sweep (``first``) must be whole
+        (its ``y_source`` is per pencil).
     """
     method, limiter, solver, cs = scheme
     nx, ny, nz, gx, gy, gz = lay
     NTOT = src.shape[1] * src.shape[2] * src.shape[3]
-    n, g, stride, d, na, ga, sa, _, _, gb, sb, _ = pencil_frame(axis, lay, sp, 0, 0)
+    n_axis, g, stride, d, na, ga, sa, _, _, gb, sb, _ = pencil_frame(axis, lay, sp, 0, 0)
     dtdx = dt / d
-    c1, c2, c3, row_x, row_y, row_z = pencil_order(axis)
+    v1, v2, v3, row_x, row_y, row_z = pencil_order(axis)
     S = src.reshape(4, NTOT)
     D = dst.reshape(4, NTOT)
     B = base.reshape(4, NTOT)
+    n = c1 - c0
     N = n + 2 * g
     lo, hi = g, g + n
     w = np.empty((4, N))
@@ -191,14 +201,16 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
     for p in range(p0, p1):
         ia = p % na
         ib = p // na
-        off = (ia + ga) * sa + (ib + gb) * sb
-        gather_primitives(S, off, stride, c1, c2, c3, w0, w1, w2, w3)
+        off = (ia + ga) * sa + (ib + gb) * sb + c0 * stride  # the segment's first ghost cell
+        gather_primitives(S, off, stride, v1, v2, v3, w0, w1, w2, w3)
         reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch)
         riemann_fluxes(wl, wr, lo, hi, cs, solver, flux)
         if store_bflux:
             for v in range(4):
-                bflux[0, v, ib, ia] = flux[v, lo]
-                bflux[1, v, ib, ia] = flux[v, hi]
+                if c0 == 0:
+                    bflux[0, v, ib, ia] = flux[v, lo]
+                if c1 == n_axis:
+                    bflux[1, v, ib, ia] = flux[v, hi]
         # domain cells of the pencil: flux differences of faces i and i + 1
         first_cell = off + lo * stride
         last = first_cell + n * stride
@@ -213,12 +225,13 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
                 d_y[i] -= dtdx * (f_y[i + 1] - f_y[i])
                 d_z[i] -= dtdx * (f_z[i + 1] - f_z[i])
             if want_rate:
-                _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p)
+                _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads,
+                             p * nseg + seg)
             continue
         # first sweep: base, input and source terms too
         if axis == 0:
             i0, j0, k0 = 0, ia, ib
-            xs[:] = xc[lo:hi]
+            xs[:] = xc[c0 + lo:c0 + hi]
             zs[:] = zc[ib + gz]
         elif axis == 1:
             i0, j0, k0 = ia, 0, ib
@@ -227,20 +240,20 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
         else:
             i0, j0, k0 = ia, ib, 0
             xs[:] = xc[ia + gx]
-            zs[:] = zc[lo:hi]
+            zs[:] = zc[c0 + lo:c0 + hi]
         if use_ext:
             if axis == 0:
-                ext_x[:] = ext[0, k0, j0, :]
-                ext_y[:] = ext[1, k0, j0, :]
-                ext_z[:] = ext[2, k0, j0, :]
+                ext_x[:] = ext[0, k0, j0, c0:c1]
+                ext_y[:] = ext[1, k0, j0, c0:c1]
+                ext_z[:] = ext[2, k0, j0, c0:c1]
             elif axis == 1:
-                ext_x[:] = ext[0, k0, :, i0]
-                ext_y[:] = ext[1, k0, :, i0]
-                ext_z[:] = ext[2, k0, :, i0]
+                ext_x[:] = ext[0, k0, c0:c1, i0]
+                ext_y[:] = ext[1, k0, c0:c1, i0]
+                ext_z[:] = ext[2, k0, c0:c1, i0]
             else:
-                ext_x[:] = ext[0, :, j0, i0]
-                ext_y[:] = ext[1, :, j0, i0]
-                ext_z[:] = ext[2, :, j0, i0]
+                ext_x[:] = ext[0, c0:c1, j0, i0]
+                ext_y[:] = ext[1, c0:c1, j0, i0]
+                ext_z[:] = ext[2, c0:c1, j0, i0]
         b_rho = B[0, first_cell:last:stride]
         b_x = B[1, first_cell:last:stride]
         b_y = B[2, first_cell:last:stride]
@@ -262,12 +275,14 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
             d_z[i] = a * b_z[i] + b * u_z[i] + dt * sz - dtdx * (f_z[i + 1] - f_z[i])
         y_source[p] = ysum
         if want_rate:
-            _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p)
+            _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads,
+                         p * nseg + seg)
 
 
 @njit(cache=True, error_model="numpy")
-def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_edges, rates, bads, p):
-    """Largest cell rate of the values just written along pencil ``p`` (see sweep_pencils)."""
+def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads, slot):
+    """Largest cell rate of the values just written along a pencil's segment from domain cell
+    ``c0`` (see sweep_pencils), into ``rates[slot]``, ``bads[slot]``."""
     nx, ny = lay.nx, lay.ny
     n = d_rho.shape[0]
     lo, hi = 0, n
@@ -276,16 +291,17 @@ def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, lay, sp, cs, skip_radial_ed
             lo, hi = 1, n - 1
         elif ia == 0 or ia == nx - 1:  # a radial boundary column (ia is the x index)
             lo, hi = 0, 0
-    # flat domain index (k ny + j) nx + i of cell i of the pencil: first + i * step
+    # flat domain index (k ny + j) nx + i of cell i of the segment: first + i * step
     if axis == 0:
         first, step = (ib * ny + ia) * nx, 1
     elif axis == 1:
         first, step = ib * ny * nx + ia, nx
     else:
         first, step = ib * nx + ia, nx * ny
+    first += c0 * step
     best = 0.0
     bad = -1
     for i in range(lo, hi):
         best, bad = fold_rate(cell_rate(d_rho[i], d_x[i], d_y[i], d_z[i], lay, sp, cs), first + i * step, best, bad)
-    rates[p] = best
-    bads[p] = bad
+    rates[slot] = best
+    bads[slot] = bad

@@ -436,14 +436,15 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             state={"particle_pos": p.pos.copy(), "particle_vel": p.vel.copy(), "particle_pid": p.pid.copy()},
         )
 
-    def _deposit(self, out, g, values, cols) -> None:
+    def _deposit(self, out, g, values, cols, nthreads: int = 0) -> None:
         """Pull-deposit ``values`` (N, nv) of the prepared particles into the domain of ``out``
-        (its domain cells set to the deposit; its ghosts left alone)."""
+        (its domain cells set to the deposit; its ghosts left alone), in ``nthreads`` chunks
+        (0: numba's current thread count)."""
         pull_deposit(out, self._ghost_arrays[g], self._lay, self._reach, self._R, self._cell_start, self._keys,
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w, self._img_src,
-                     numba.get_num_threads(), True)
+                     nthreads or numba.get_num_threads(), True)
 
-    def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int]) -> np.ndarray:
+    def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int], nthreads: int) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``
         (with the ghost rows beyond them where they reach a z face); returns the array that holds
         the result: ``out`` in a 2D x-z box (filtered out of place), else ``field`` itself."""
@@ -452,7 +453,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._field_halo(field, g[2])
         fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
         if self._xz:
-            filter_field_xz(field, out, k_lo, k_hi, max(1, min(numba.get_num_threads(), 8)))
+            filter_field_xz(field, out, k_lo, k_hi, max(1, min(nthreads, 8)))
             return out
         if self.smooth:
             filter_field(field, self._active, k_lo, k_hi)
@@ -486,6 +487,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         gas, p = self.gas, self.particles
         h = dt
         t = gas.t
+        nthreads = numba.get_num_threads()
         pos, vel, species, pid, mass = p.buffers()
         # 1. drift, exchange, sort, weights, images at x^{n+1/2}
         self._exchange(t + 0.5 * h, 0.5 * h)
@@ -498,7 +500,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             back = 0.5 * h if self._active[0] else 0.0
             dust_values(pos, vel, species, mass, n + self._n_halo, self._inv_vol, True, self._shear_rate, back,
                         self._values, self._cols)
-            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols)
+            self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, nthreads)
             if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
                 explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._off, self._shear_rate, self._dep1,
                                      self.nspecies, self.species, self._source)
@@ -524,18 +526,17 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
                               self._dep1, self.nspecies, self.species, self._frame_forces, self._mesh_field,
                               self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
                               mine[1])
-        traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows)
+        traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows, nthreads)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
-        self._vmax_work[...] = 0.0  # the kick writes the rows of its chunks only: fewer than 64 with few particles
-        kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay, self._sp,
-             traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef, self._frame_forces, self._shear_rate,
-             h, self._inv_vol, self._active, self._values, self.terms_rows, self._vmax_work, self._fwork)
-        self._vmax = self._vmax_work.max(axis=0)
+        self._vmax = kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay,
+                          self._sp, traj, self._gt, self._c_rho, self._c_mesh, self.species, self._coef,
+                          self._frame_forces, self._shear_rate, h, self._inv_vol, self._active, self._values,
+                          self.terms_rows, self._vmax_work, self._fwork)
         if self.feedback:
             self._kicked(n)
-            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols)
-            dep2 = self._fill_and_filter(self._dep2, self._dep2_out, self._g2, t_half, rows)
+            self._deposit(self._dep2, self._g2, self._values[:, :3], self._zero_cols, nthreads)
+            dep2 = self._fill_and_filter(self._dep2, self._dep2_out, self._g2, t_half, rows, nthreads)
             copy_domain(dep2, self._ghost_arrays[self._g2], self._source, 1.0)
             self._have_source = True
         # 6. gas corrector

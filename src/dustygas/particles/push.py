@@ -222,8 +222,13 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
     to which each row's sum over its particles, in their order, is added: a sum that does not
     depend on the chunks, the thread count or the block (:mod:`dustygas.parallel`) that holds
     the row. A row that two chunks share has its particles' impulses written to ``work``
-    ``(>= 3, >= n)`` and summed after the parallel loop. ``vmax`` ``(nchunk, 3)``: the largest
-    ``|v_d|`` per chunk.
+    ``(>= 3, >= n)`` and summed after the parallel loop. ``vmax`` ``(>= nchunk, 3)``: the largest
+    ``|v_d|`` per chunk (work space).
+
+    Returns
+    -------
+    vx, vy, vz
+        The largest ``|v_d|`` along each axis over the particles (0 without particles).
     """
     nx, ny = lay.nx, lay.ny
     tx, ty, tz = gt
@@ -383,6 +388,12 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
         budget[shared, 1] += sy
         budget[shared, 2] += sz
         done = shared
+    fastest_x = fastest_y = fastest_z = 0.0
+    for part in range(nchunk):
+        fastest_x = max(fastest_x, vmax[part, 0])
+        fastest_y = max(fastest_y, vmax[part, 1])
+        fastest_z = max(fastest_z, vmax[part, 2])
+    return fastest_x, fastest_y, fastest_z
 
 
 def shear_frame_forces(ft: ForceTable, shear_rate: float) -> ForceTable:
