@@ -123,10 +123,14 @@ SCHEMES = {"vl2": ["scheme.integrator=vl2", "scheme.cfl=0.4"], "ctu": ["scheme.i
 
 
 def scheme_sets(name: str) -> list[str]:
-    """The ``--set`` overrides of an ``--integrators`` entry: ``vl2``, ``ctu`` or ``NAME@COURANT``."""
+    """The ``--set`` overrides of an ``--integrators`` entry: ``vl2``, ``ctu`` or
+    ``NAME[+SOLVER]@COURANT`` (e.g. ``ctu@0.8``, ``ctu+hlle@1.0``: the Riemann solver, default the
+    problem's HLLC)."""
     if "@" in name:
         integrator, cfl = name.split("@")
-        return [f"scheme.integrator={integrator}", f"scheme.cfl={float(cfl)!r}"]
+        integrator, _, solver = integrator.partition("+")
+        sets = [f"scheme.integrator={integrator}", f"scheme.cfl={float(cfl)!r}"]
+        return sets + ([f"scheme.riemann={solver}"] if solver else [])
     return SCHEMES[name]
 
 
@@ -205,7 +209,8 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--athena", type=Path, help="Athena 4.2 binary built for streaming2d_single: run it side by side")
     ap.add_argument("--athinput", type=Path, help="its input file (default: tst/particle/ of its source tree)")
-    ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME@COURANT, e.g. ctu@0.9)")
+    ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER]@COURANT, e.g. ctu@0.9, "
+                         "ctu+hlle@1.0)")
     ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
     ap.add_argument("--one-thread", action="store_true", help="--athena: dustygas on one thread only")
     args = ap.parse_args()

@@ -30,12 +30,16 @@ particle per cell, amplitude 1e-6, run to t = 6 resp. 150. Growth: 0.4190091 res
 (consistent linearisation; Benítez-Llambay, Krapp & Pessah 2019, Table 4); the mode amplitudes of all eight fields go to ``history.h5`` for
 ``dustygas analyze growth``.
 
-The gas integrator is VL2 at Courant 0.4 by default (stable to 1/2 in 2D). The single-step
+The gas integrator is VL2 at Courant 0.4 by default (stable to 1/2 in 2D; linA grows −0.36 %
+too slowly at 64², the same at Courant 0.2 and 0.5 and with either solver). The single-step
 corner-transport-upwind integrator (:mod:`dustygas.grid.ctu`) is stable to Courant 1, as in
-Athena's runs (CTU at 0.8; Bai & Stone 2010a); at 0.9 it reaches t = 6 in 40,821 cycles instead
-of 91,846, in about half the wall time, at a growth error of −1.5 % instead of −0.36 %::
+Athena's runs (CTU + HLLC at 0.8; Bai & Stone 2010a). With the HLLC solver its growth error grows
+about linearly with the Courant number (linA: −0.61 % at 0.2, −0.83 % at 0.4, −1.35 % at 0.8,
+−1.72 % at 1.0; Athena's −1.38 % at 0.8); with HLLE it does not (−0.64 % at 0.4, −0.53 % at 0.8,
+−0.44 % at 1.0; measured 2026-12-04). CTU + HLLE at Courant 1 reaches t = 6 in 36,739 cycles
+instead of 91,846, in about 40 % of the wall time of the default, at −0.44 %::
 
-    dustygas run si-linA --set scheme.integrator=ctu --set scheme.cfl=0.9
+    dustygas run si-linA --set scheme.integrator=ctu --set scheme.riemann=hlle --set scheme.cfl=1
 """
 
 from __future__ import annotations
