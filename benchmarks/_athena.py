@@ -40,13 +40,17 @@ def find_input(binary: Path, problem: str, subdir: str) -> Path:
     raise SystemExit(f"no athinput.{problem} found above {binary}: pass --athinput")
 
 
-def run_athena(binary: Path, athinput: Path, overrides: list[str], workdir: Path | None = None) -> dict:
-    """Run ``binary -i athinput overrides...`` in a scratch directory; wall and CPU time, cycles, output."""
+def run_athena(binary: Path, athinput: Path, overrides: list[str], workdir: Path | None = None,
+               ranks: int = 1) -> dict:
+    """Run ``binary -i athinput overrides...`` in a scratch directory (``ranks > 1``: through
+    ``mpiexec -n ranks``, for a binary configured with ``--enable-mpi``); wall and CPU time (of
+    all ranks), cycles, output."""
     with tempfile.TemporaryDirectory(dir=workdir) as tmp:
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
-        proc = subprocess.run([str(binary), "-i", str(athinput), *overrides], cwd=tmp, capture_output=True,
-                              text=True, check=False)
+        launcher = ["mpiexec", "-n", str(ranks)] if ranks > 1 else []
+        proc = subprocess.run([*launcher, str(binary), "-i", str(athinput), *overrides], cwd=tmp,
+                              capture_output=True, text=True, check=False)
         wall = time.perf_counter() - t0
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)

@@ -151,15 +151,18 @@ def full_lina(threads: int, sets: list[str] | None = None) -> dict:
                 particle_updates=res.throughput, growth=fit.growth_rate, spread=fit.spread, window=fit.window)
 
 
-def athena_lina(binary: Path, athinput: Path) -> dict:
-    """Athena's streaming2d_single linA: 64², 1 ppc, CTU at 0.8, TSC, semi-implicit, t = 0 -> 6."""
+def athena_lina(binary: Path, athinput: Path, courant: float = 0.8, ranks: int = 1) -> dict:
+    """Athena's streaming2d_single linA: 64², 1 ppc, CTU at ``courant`` (its runs: 0.8), TSC,
+    semi-implicit, t = 0 -> 6; on ``ranks`` MPI processes (the box cut along x)."""
     from _athena import run_athena, streaming_growth
 
-    overrides = ["time/tlim=6", "time/cour_no=0.8", "time/nlim=10000000", "job/maxout=1", "output1/dt=0.02",
+    overrides = ["time/tlim=6", f"time/cour_no={courant!r}", "time/nlim=10000000", "job/maxout=1", "output1/dt=0.02",
                  "domain1/Nx1=64", "domain1/Nx2=64", "particle/parnumcell=1", "particle/integrator=2",
                  "particle/interp=2", "particle/tsmode=3", "problem/ipert=1", "problem/nwave=1",
                  "problem/amp=1.0e-6"]
-    res = run_athena(binary, athinput, overrides)
+    if ranks > 1:
+        overrides += [f"domain1/NGrid_x1={ranks}", "domain1/NGrid_x2=1"]
+    res = run_athena(binary, athinput, overrides, ranks=ranks)
     (amp,) = [text for name, text in res["files"].items() if name.startswith("Streaming2d")]
     fit = streaming_growth(amp)
     return dict(cycles=res["cycles"], wall=res["wall"], cpu=res["cpu"], zone_cycles=res["cycles"] * 64 * 64 / res["wall"],
@@ -173,7 +176,8 @@ def _line(name: str, r: dict) -> str:
             f"{r['window'][0]:.2f}-{r['window'][1]:.2f}, fields within {100 * r['spread']:.2f} %)  load {load()}")
 
 
-def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], rounds: int, two_threads: bool) -> None:
+def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], rounds: int, two_threads: bool,
+                 courant: float = 0.8, ranks: int = 1) -> None:
     """Athena and dustygas linA interleaved, ``rounds`` times; medians and ratios."""
     from _athena import find_input
 
@@ -187,7 +191,7 @@ def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], ro
             jobs.reverse()
         for name, sets, t in jobs:
             key = name if name == "athena" else f"dustygas {name} {t}T"
-            r = athena_lina(binary, athinput) if name == "athena" else full_lina(t, sets)
+            r = athena_lina(binary, athinput, courant, ranks) if name == "athena" else full_lina(t, sets)
             runs.setdefault(key, []).append(r)
             print(_line(key, r), flush=True)
     ath = statistics.median(r["wall"] for r in runs["athena"])
@@ -209,6 +213,9 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--athena", type=Path, help="Athena 4.2 binary built for streaming2d_single: run it side by side")
     ap.add_argument("--athinput", type=Path, help="its input file (default: tst/particle/ of its source tree)")
+    ap.add_argument("--athena-courant", type=float, default=0.8, help="Athena's Courant number (its linA runs: 0.8)")
+    ap.add_argument("--athena-ranks", type=int, default=1,
+                    help="run Athena on this many MPI ranks (a binary configured with --enable-mpi)")
     ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER]@COURANT, e.g. ctu@0.9, "
                          "ctu+hlle@1.0)")
     ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
@@ -218,7 +225,8 @@ def main() -> None:
     print(f"# bench_particles  {time.strftime('%Y-%m-%d %H:%M')}  numba {numba.__version__}  "
           f"threads available {maxthreads}  load {load()}")
     if args.athena is not None:
-        side_by_side(args.athena, args.athinput, args.integrators.split(","), args.rounds, not args.one_thread)
+        side_by_side(args.athena, args.athinput, args.integrators.split(","), args.rounds, not args.one_thread,
+                     args.athena_courant, args.athena_ranks)
         return
     if not args.quick:
         one = None
