@@ -11,7 +11,9 @@ How to build the binaries (words, not a recipe): from the public Athena 4.2 C re
 --with-integrator=ctu --with-order=3p --with-flux=hllc`` and, for the particle runs, also
 ``--with-particles=feedback --enable-fargo --with-problem=streaming2d_single``; for the gas-only
 rows ``--with-problem=hb3`` (2D x-z) or ``--with-problem=hgb`` (3D); then ``make all`` (recent
-gcc needs ``-fcommon`` in the compiler flags). One binary per problem.
+gcc needs ``-fcommon`` in the compiler flags; GNU make 4.4 stops at the ``abort`` line of the
+generated ``Makeoptions``' machine list, which can be blanked). One binary per problem; for runs on
+several MPI ranks (``run_athena(..., ranks=N)``) add ``--enable-mpi`` (mpich's ``mpicc``).
 """
 
 from __future__ import annotations
