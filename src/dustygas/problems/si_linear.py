@@ -37,7 +37,8 @@ Athena's runs (CTU + HLLC at 0.8; Bai & Stone 2010a). With the HLLC solver its g
 about linearly with the Courant number (linA: −0.61 % at 0.2, −0.83 % at 0.4, −1.35 % at 0.8,
 −1.72 % at 1.0; Athena's −1.38 % at 0.8); with HLLE it does not (−0.64 % at 0.4, −0.53 % at 0.8,
 −0.44 % at 1.0; measured 2026-12-04). CTU + HLLE at Courant 1 reaches t = 6 in 36,739 cycles
-instead of 91,846, in about 40 % of the wall time of the default, at −0.44 %::
+instead of 91,846, in about half the wall time of the default (one thread, two runs at a time: 79 s
+against 156 s), at −0.44 %::
 
     dustygas run si-linA --set scheme.integrator=ctu --set scheme.riemann=hlle --set scheme.cfl=1
 
