@@ -18,7 +18,9 @@ Side by side with Athena (``--athena PATH``): the path of an Athena 4.2 binary b
 repository for its ``streaming2d_single`` problem (``benchmarks/_athena.py`` says how it is
 configured). Athena's linA (``ipert=1``, 64², one particle per cell, CTU at Courant 0.8, TSC,
 semi-implicit drag, t = 0 -> 6, its mode-amplitude output every 0.02) and dustygas's si-linA
-(each integrator of ``--integrators``, one thread, and two threads) run interleaved,
+(each integrator of ``--integrators``, one thread, and two threads; by default CTU + HLLE at
+Courant 1.0, the most accurate and fastest setting for linA, then CTU + HLLC at 0.8 as Athena,
+then VL2 at 0.4) run interleaved,
 ``--rounds`` times; printed: wall time to t = 6, cycles, zone-cycles/s, growth rate and its
 error against linear theory (Athena's from its largest-perturbation output, ours from the
 Fourier amplitudes, both with the automatic window of ``dustygas analyze growth``), and the
@@ -216,7 +218,7 @@ def main() -> None:
     ap.add_argument("--athena-courant", type=float, default=0.8, help="Athena's Courant number (its linA runs: 0.8)")
     ap.add_argument("--athena-ranks", type=int, default=1,
                     help="run Athena on this many MPI ranks (a binary configured with --enable-mpi)")
-    ap.add_argument("--integrators", default="ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER]@COURANT, e.g. ctu@0.9, "
+    ap.add_argument("--integrators", default="ctu+hlle@1.0,ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER]@COURANT, e.g. ctu@0.9, "
                          "ctu+hlle@1.0)")
     ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
     ap.add_argument("--one-thread", action="store_true", help="--athena: dustygas on one thread only")
