@@ -227,14 +227,15 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
                     first_bad[c] = p
                 keys[p] = 0
                 continue
-            key = _cell_key(pos, p, sp, ix, iy, iz, off, nx, ny, nz)
+            # the cells of the stencils are those of _cell_key (the same arithmetic)
+            ci = stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
+            cj = stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
+            ck = stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
+            key = (ck * ny + cj) * nx + ci
             keys[p] = key
             for cell in range(prev + 1 if p > 0 else 0, key + 1):
                 cell_start[cell] = p
             prev = key
-            stencil_into(pos[0, p], sp.x0, ix, off.i0, nx, kernel, R, wts, p, 0)
-            stencil_into(pos[1, p], sp.y0, iy, off.j0, ny, kernel, R, wts, p, 1)
-            stencil_into(pos[2, p], sp.z0, iz, off.k0, nz, kernel, R, wts, p, 2)
         for p in range(p0 + 1, p1):  # the pairs (p - 1, p) inside the chunk
             if _out_of_order(keys, pid, p):
                 unordered[c] = 1
