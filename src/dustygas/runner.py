@@ -66,7 +66,7 @@ from ._version import __version__
 from .config import Config, Param, dump_toml
 from .errors import EXIT_WALLTIME, OutputError, SimulationError, UserError
 from .io.rundir import RunDirectory
-from .parallel.comm import agreed, launched_under_mpi
+from .parallel.comm import agreed, is_writer, launched_under_mpi
 from .threads import ThreadControl
 
 __all__ = ["Engine", "RUN_SCHEMA", "RunLoop", "RunResult", "run_engine", "config_text", "CHECKPOINT_ATTRS"]
@@ -201,9 +201,11 @@ class RunLoop:
         self.state = _LoopState()
         self.config_toml = config_text(cfg)  # the ``config`` attribute of every file (restarts read it)
         # progress: True -> tqdm bar; None -> the bar on a terminal, ``cycle= time= dt=`` lines
-        # otherwise (the CLI); False -> no progress output (the Python API's default)
-        self.progress = sys.stderr.isatty() if progress is None else bool(progress)
-        self.progress_lines = progress is None and not self.progress
+        # otherwise (the CLI); False -> no progress output (the Python API's default). Under MPI
+        # only the writing rank shows it (every rank takes the same steps)
+        writer = is_writer()
+        self.progress = writer and (sys.stderr.isatty() if progress is None else bool(progress))
+        self.progress_lines = writer and progress is None and not self.progress
         self._last_history_wall = time.perf_counter()
         # entered by run_engine around the whole run (initial outputs and restore included): a stop
         # signal that arrives before the first step stops the run after that step with a checkpoint

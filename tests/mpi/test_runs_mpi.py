@@ -63,6 +63,15 @@ def test_info_shows_ranks_and_threads(mpirun, tmp_path):
     assert rows == [rows[0]] and "2, 1 numba thread(s) each" in rows[0]  # printed once, by rank 0
 
 
+
+def test_progress_lines_come_from_one_rank(mpirun, tmp_path):
+    """Every rank takes the same steps; only the writing rank prints a progress line per step."""
+    proc = mpirun(2, "-m", "dustygas", "run", *SOUND[:7], "--set", "run.max_cycles=4", "--set", "run.log_every=1",
+                  "-o", "lines", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    lines = [line for line in proc.stderr.splitlines() if line.startswith("cycle=")]
+    assert [line.split()[0] for line in lines] == ["cycle=1", "cycle=2", "cycle=3", "cycle=4"], proc.stderr[-2000:]
+
 def test_one_process_run_never_imports_mpi(tmp_path):
     code = ("import sys, dustygas.api as api; api.run('soundwave', output='r', set=['run.tlim=0.05']); "
             "print('mpi4py' in sys.modules)")
