@@ -18,9 +18,10 @@ Side by side with Athena (``--athena PATH``): the path of an Athena 4.2 binary b
 repository for its ``streaming2d_single`` problem (``benchmarks/_athena.py`` says how it is
 configured). Athena's linA (``ipert=1``, 64², one particle per cell, CTU at Courant 0.8, TSC,
 semi-implicit drag, t = 0 -> 6, its mode-amplitude output every 0.02) and dustygas's si-linA
-(each integrator of ``--integrators``, one thread, and two threads; by default CTU + HLLE at
-Courant 1.0, the most accurate and fastest setting for linA, then CTU + HLLC at 0.8 as Athena,
-then VL2 at 0.4) run interleaved,
+(each integrator of ``--integrators``, one thread, and two threads; by default CTU + HLLE + PPM at
+Courant 1.0, the fastest setting for linA that is more accurate than Athena's run, then CTU + HLLE
+(PPM-CS) at 1.0, the most accurate CTU setting, then CTU + HLLC at 0.8 as Athena, then VL2 at 0.4)
+run interleaved,
 ``--rounds`` times; printed: wall time to t = 6, cycles, zone-cycles/s, growth rate and its
 error against linear theory (Athena's from its largest-perturbation output, ours from the
 Fourier amplitudes, both with the automatic window of ``dustygas analyze growth``), and the
@@ -126,13 +127,29 @@ SCHEMES = {"vl2": ["scheme.integrator=vl2", "scheme.cfl=0.4"], "ctu": ["scheme.i
 
 def scheme_sets(name: str) -> list[str]:
     """The ``--set`` overrides of an ``--integrators`` entry: ``vl2``, ``ctu`` or
-    ``NAME[+SOLVER]@COURANT`` (e.g. ``ctu@0.8``, ``ctu+hlle@1.0``: the Riemann solver, default the
-    problem's HLLC)."""
+    ``NAME[+SOLVER][+RECONSTRUCTION][+unfiltered]@COURANT`` (e.g. ``ctu@0.8``, ``ctu+hlle@1.0``,
+    ``ctu+hlle+ppm@1.0``: the Riemann solver and the face reconstruction, by default the
+    problem's HLLC and PPM-CS; ``unfiltered``: the particles gather and deposit without the
+    grid-scale filter, ``particles.smooth=false``)."""
+    from dustygas.grid.reconstruct import RECONSTRUCTIONS
+    from dustygas.grid.riemann import RIEMANN_SOLVERS
+
     if "@" in name:
-        integrator, cfl = name.split("@")
-        integrator, _, solver = integrator.partition("+")
+        head, cfl = name.split("@")
+        integrator, *options = head.split("+")
         sets = [f"scheme.integrator={integrator}", f"scheme.cfl={float(cfl)!r}"]
-        return sets + ([f"scheme.riemann={solver}"] if solver else [])
+        for option in options:
+            if option in RIEMANN_SOLVERS:
+                sets.append(f"scheme.riemann={option}")
+            elif option in RECONSTRUCTIONS:
+                sets.append(f"scheme.reconstruction={option}")
+            elif option == "unfiltered":
+                sets.append("particles.smooth=false")
+            else:
+                raise SystemExit(f"--integrators: {option!r} in {name!r} is not a Riemann solver "
+                                 f"({', '.join(RIEMANN_SOLVERS)}), a reconstruction ({', '.join(RECONSTRUCTIONS)}) "
+                                 "or 'unfiltered'")
+        return sets
     return SCHEMES[name]
 
 
@@ -218,8 +235,9 @@ def main() -> None:
     ap.add_argument("--athena-courant", type=float, default=0.8, help="Athena's Courant number (its linA runs: 0.8)")
     ap.add_argument("--athena-ranks", type=int, default=1,
                     help="run Athena on this many MPI ranks (a binary configured with --enable-mpi)")
-    ap.add_argument("--integrators", default="ctu+hlle@1.0,ctu,vl2", help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER]@COURANT, e.g. ctu@0.9, "
-                         "ctu+hlle@1.0)")
+    ap.add_argument("--integrators", default="ctu+hlle+ppm@1.0,ctu+hlle@1.0,ctu,vl2",
+                    help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER][+RECONSTRUCTION][+unfiltered]@COURANT, "
+                         "e.g. ctu@0.9, ctu+hlle@1.0, ctu+hlle+ppm@1.0)")
     ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
     ap.add_argument("--one-thread", action="store_true", help="--athena: dustygas on one thread only")
     args = ap.parse_args()

@@ -38,9 +38,11 @@ about linearly with the Courant number (linA: −0.61 % at 0.2, −0.83 % at 0.4
 −1.72 % at 1.0; Athena's −1.38 % at 0.8); with HLLE it does not (−0.64 % at 0.4, −0.53 % at 0.8,
 −0.44 % at 1.0; measured 2026-12-04). CTU + HLLE at Courant 1 reaches t = 6 in 36,739 cycles
 instead of 91,846, in about half the wall time of the default (one thread, two runs at a time: 79 s
-against 156 s), at −0.44 %::
+against 156 s), at −0.44 %; with plain PPM (Colella & Woodward 1984) instead of PPM-CS its gas step
+is ~20 % cheaper, at −0.50 % (the fastest setting that beats Athena's accuracy on linA)::
 
     dustygas run si-linA --set scheme.integrator=ctu --set scheme.riemann=hlle --set scheme.cfl=1
+    dustygas run si-linA --set scheme.integrator=ctu --set scheme.riemann=hlle --set scheme.cfl=1 --set scheme.reconstruction=ppm
 
 It is not a general setting: linB with it grows +20.9 % too fast (its fields 31 % apart), where the
 default VL2 gives −2.1 %.
