@@ -63,7 +63,6 @@ def test_info_shows_ranks_and_threads(mpirun, tmp_path):
     assert rows == [rows[0]] and "2, 1 numba thread(s) each" in rows[0]  # printed once, by rank 0
 
 
-
 def test_progress_lines_come_from_one_rank(mpirun, tmp_path):
     """Every rank takes the same steps; only the writing rank prints a progress line per step."""
     proc = mpirun(2, "-m", "dustygas", "run", *SOUND[:7], "--set", "run.max_cycles=4", "--set", "run.log_every=1",
