@@ -9,8 +9,8 @@ about linearly with the Courant number (-0.61 % at 0.2, -1.35 % at 0.8, -1.72 % 
 CTU + HLLC at 0.8: -1.38 %), which is why the fast setting uses HLLE. With plain PPM (Colella &
 Woodward 1984) instead of PPM-CS the gas step is ~20 % cheaper and linA grows -0.50 % (measured
 2026-12-04): the faster of the two, still more accurate than Athena's run. Tolerance 0.6 % for
-both. (linA only: linB with this setting grows +20.9 % too fast, so the problems' default stays
-VL2.)
+both. (linA only: linB with CTU + HLLE + PPM-CS at Courant 1 grows +20.9 % too fast, so the
+problems' default stays VL2.)
 """
 
 import math

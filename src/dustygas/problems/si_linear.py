@@ -44,8 +44,8 @@ is ~20 % cheaper, at −0.50 % (the fastest setting that beats Athena's accuracy
     dustygas run si-linA --set scheme.integrator=ctu --set scheme.riemann=hlle --set scheme.cfl=1
     dustygas run si-linA --set scheme.integrator=ctu --set scheme.riemann=hlle --set scheme.cfl=1 --set scheme.reconstruction=ppm
 
-It is not a general setting: linB with it grows +20.9 % too fast (its fields 31 % apart), where the
-default VL2 gives −2.1 %.
+Neither is a general setting: linB with CTU + HLLE + PPM-CS at Courant 1 grows +20.9 % too fast (its
+fields 31 % apart; with plain PPM not measured), where the default VL2 gives −2.1 %.
 """
 
 from __future__ import annotations
