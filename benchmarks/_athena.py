@@ -31,6 +31,71 @@ import numpy as np
 #: of each field over the grid (gas density, dust density, then gas/dust velocities x, y, z)
 STREAMING_COLUMNS = ("drho_g", "drho_p", "ux", "wx", "uy", "wy", "uz", "wz")
 
+#: input of Athena's ``par_strat3d`` / ``par_strat2d`` with the physics of dustygas's ``si3d``
+#: preset: one species of τ_s = 1 (fixed), Z = 0.03 in a Gaussian layer of H_p = 0.02 H, Π = 0.05
+#: (``vsc1``), the NSH start (``ipert = 0``), TSC and the semi-implicit integrator; periodic
+#: boundaries (Athena's potential is periodic in z). The caller fills in the box (``n``, ``lo``,
+#: ``hi`` per axis; x1 radial, and in 2D x2 vertical), the one output block, the time limits,
+#: ``NGrid_x1`` (``ranks``) and the particles per grid (one per cell: cells / ranks).
+PAR_STRAT_INPUT = """<job>
+problem_id = {problem_id}
+maxout = 1
+num_domains = 1
+<output1>
+out_fmt = {out_fmt}
+dt = {out_dt}
+<time>
+cour_no = {courant}
+nlim = {nlim}
+tlim = {tlim}
+<domain1>
+level = 0
+Nx1 = {n1}
+x1min = {lo1}
+x1max = {hi1}
+bc_ix1 = 4
+bc_ox1 = 4
+NGrid_x1 = {ranks}
+Nx2 = {n2}
+x2min = {lo2}
+x2max = {hi2}
+bc_ix2 = 4
+bc_ox2 = 4
+NGrid_x2 = 1
+Nx3 = {n3}
+x3min = {lo3}
+x3max = {hi3}
+bc_ix3 = 4
+bc_ox3 = 4
+NGrid_x3 = 1
+<particle>
+partypes = 1
+parnumgrid = {per_grid}
+integrator = 2
+interp = 2
+tsmode = 3
+tshuf = 2000
+<problem>
+omega = 1.0
+iso_csound = 1.0
+tsmin = 1.0
+tsmax = 1.0
+tscrit = 0.01
+hparmax = 0.02
+hparmin = 0.02
+amin = 1.0
+amax = 1.0
+rhoaconv = 1.0
+alamcoeff = 1.0
+mratio = 0.03
+pwind = 0.0
+vsc1 = 0.05
+vsc2 = 0.0
+ipert = 0
+ntrack = 0
+nlis = 0
+"""
+
 
 def find_input(binary: Path, problem: str, subdir: str) -> Path:
     """``tst/<subdir>/athinput.<problem>`` of the Athena source tree above ``binary``."""

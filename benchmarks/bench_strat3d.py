@@ -42,70 +42,13 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 import numba  # noqa: E402
+from _athena import PAR_STRAT_INPUT  # noqa: E402
 
 N = 32
 SIDE = 0.2
 SETS = [f"grid.nx={N}", f"grid.ny={N}", f"grid.nz={N}", f"grid.lx={SIDE}", f"grid.ly={SIDE}", f"grid.lz={SIDE}",
         "problem.Z=0.03", "problem.Hp=0.02", "problem.Pi=0.05", "problem.taus=[1.0]", "problem.per_cell=1"]
 
-ATHENA_INPUT = """<job>
-problem_id = Par_Strat3d
-maxout = 1
-num_domains = 1
-<output1>
-out_fmt = hst
-dt = 1000.0
-<time>
-cour_no = 0.4
-nlim = {cycles}
-tlim = 1000.0
-<domain1>
-level = 0
-Nx1 = {n}
-x1min = {lo}
-x1max = {hi}
-bc_ix1 = 4
-bc_ox1 = 4
-NGrid_x1 = 1
-Nx2 = {n}
-x2min = {lo}
-x2max = {hi}
-bc_ix2 = 4
-bc_ox2 = 4
-NGrid_x2 = 1
-Nx3 = {n}
-x3min = {lo}
-x3max = {hi}
-bc_ix3 = 4
-bc_ox3 = 4
-NGrid_x3 = 1
-<particle>
-partypes = 1
-parnumgrid = {npart}
-integrator = 2
-interp = 2
-tsmode = 3
-tshuf = 2000
-<problem>
-omega = 1.0
-iso_csound = 1.0
-tsmin = 1.0
-tsmax = 1.0
-tscrit = 0.01
-hparmax = 0.02
-hparmin = 0.02
-amin = 1.0
-amax = 1.0
-rhoaconv = 1.0
-alamcoeff = 1.0
-mratio = 0.03
-pwind = 0.0
-vsc1 = 0.05
-vsc2 = 0.0
-ipert = 0
-ntrack = 0
-nlis = 0
-"""
 
 
 def load() -> str:
@@ -116,7 +59,10 @@ def athena(binary: str, cycles: int) -> dict:
     """Run Athena for ``cycles`` cycles; its own zone-cycles/cpu-second and the simulated time."""
     with tempfile.TemporaryDirectory() as tmp:
         inp = Path(tmp) / "athinput.bench"
-        inp.write_text(ATHENA_INPUT.format(cycles=cycles, n=N, lo=-SIDE / 2, hi=SIDE / 2, npart=N**3))
+        box = dict(lo1=-SIDE / 2, hi1=SIDE / 2, lo2=-SIDE / 2, hi2=SIDE / 2, lo3=-SIDE / 2, hi3=SIDE / 2)
+        inp.write_text(PAR_STRAT_INPUT.format(problem_id="Par_Strat3d", out_fmt="hst", out_dt=1000.0, courant=0.4,
+                                              nlim=cycles, tlim=1000.0, n1=N, n2=N, n3=N, ranks=1, per_grid=N**3,
+                                              **box))
         t0 = time.perf_counter()
         out = subprocess.run([binary, "-i", str(inp), "-d", tmp], capture_output=True, text=True, check=True,
                              cwd=tmp, timeout=3600)

@@ -31,7 +31,8 @@ from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tabl
 from .mesh import Mesh
 from .reconstruct import LIMITERS, RECONSTRUCTIONS, STENCIL_DEPTH
 from .riemann import RIEMANN_SOLVERS
-from .shearing_box import shear_offset, shear_velocity_jump, source_terms
+from .shearing_box import (periodic_tidal_lever, periodic_tidal_potential, shear_offset, shear_velocity_jump,
+                           source_terms)
 
 __all__ = ["GridEngine", "GridGeometry"]
 
@@ -105,6 +106,8 @@ class GridEngine:
         Kind name per axis (:data:`~dustygas.grid.boundaries.BOUNDARY_KINDS`).
     omega, q, orbital_advection, vertical_gravity, eta_vK
         Shearing box (:func:`~dustygas.grid.shearing_box.source_terms`); ``omega = 0``: none.
+        Vertical gravity in a box periodic in z derives from the periodic, smoothed potential
+        :meth:`tidal_potential` (Athena's stratified boxes, Bai & Stone 2010b).
 
     Examples
     --------
@@ -179,7 +182,13 @@ class GridEngine:
         self._to_full = q * omega if self.orbital_advection else 0.0
         self._to_relative = 0.0 if self.orbital_advection else q * omega
         self._xc = mesh.centers(0, ghosts=True)
+        # the lever of the vertical gravity -Omega^2 zeta: z, or in a box periodic in z the
+        # folded and smoothed lever of a periodic potential (kernels read zc only for gravity)
+        self._periodic_gravity = (vertical_gravity and mesh.active[2]
+                                  and BOUNDARY_KINDS[boundaries[2]] in (PERIODIC, SHEAR_PERIODIC))
         self._zc = mesh.centers(2, ghosts=True)
+        if self._periodic_gravity:
+            self._zc = periodic_tidal_lever(self._zc, **self._periodic_box())
         nz, ny, nx = mesh.array_shape
         self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
         self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
@@ -258,6 +267,18 @@ class GridEngine:
     def _check(self, rate: float, bad: int) -> None:
         self._rate = rate
         self._bad = bad
+
+    def _periodic_box(self) -> dict[str, float]:
+        """The global z extent and the smoothing length (the ghost depth) of the periodic potential."""
+        m = self.mesh
+        return dict(z_lo=float(m.origin[2]), lz=float(m.size[2]), smoothing=m.nghost * float(m.dx[2]))
+
+    def tidal_potential(self, z: np.ndarray) -> np.ndarray:
+        """The vertical tidal potential per ``Omega^2`` that the gas feels, 0 at ``z = 0``: ``z^2/2``,
+        or in a box periodic in z :func:`~dustygas.grid.shearing_box.periodic_tidal_potential`
+        (the isothermal column at rest is ``rho_0 exp(-Omega^2 phi / c_s^2)``)."""
+        z = np.asarray(z, dtype=np.float64)
+        return periodic_tidal_potential(z, **self._periodic_box()) if self._periodic_gravity else 0.5 * z * z
 
     def timestep(self) -> float:
         """``cfl / max_d((|v_d| + c_s)/dx_d)`` of the current state (thesis eqs. 2.12-2.13)."""

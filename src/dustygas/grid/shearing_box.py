@@ -25,6 +25,11 @@ which is thesis eq. 4.2b as printed (there q = 3/2, so ``(2 - q) Omega = Omega /
 The radial images of the box slide in y: the fluid at ``(x - Lx, y)`` is the fluid at
 ``(x, y + q Omega Lx t)`` with ``v_y`` larger by ``q Omega Lx`` (the latter only when the full
 velocity is stored). :func:`shear_offset` is that displacement modulo Ly.
+
+Vertical gravity in a box periodic in z (:func:`periodic_tidal_potential`) uses the tidal
+potential of Athena's stratified particle-gas boxes (Bai & Stone 2010b), folded into the box and
+flattened within a smoothing length of its faces so that the force vanishes there and the
+potential is periodic and smooth.
 """
 
 from __future__ import annotations
@@ -32,10 +37,11 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+import numpy as np
 from numba import njit
 
 __all__ = ["RotatingFrame", "rotating_frame", "SourceTerms", "source_terms", "momentum_source", "shear_offset",
-           "shear_velocity_jump"]
+           "shear_velocity_jump", "periodic_tidal_potential", "periodic_tidal_lever"]
 
 
 class RotatingFrame(NamedTuple):
@@ -141,3 +147,54 @@ def shear_offset(t: float, q_omega_lx: float, ly: float) -> float:
 def shear_velocity_jump(q: float, omega: float, lx: float, orbital_advection: bool) -> float:
     """``q Omega Lx``: how much larger ``v_y`` is in the inner image than in the outer one."""
     return 0.0 if orbital_advection else q * omega * lx
+
+
+def _fold(z: np.ndarray, z_lo: float, lz: float) -> np.ndarray:
+    """``z`` folded into the box ``[z_lo, z_lo + lz)``, measured from its centre."""
+    z = np.asarray(z, dtype=np.float64)
+    return z - lz * np.floor((z - z_lo) / lz) - (z_lo + 0.5 * lz)
+
+
+def periodic_tidal_potential(z: np.ndarray, *, z_lo: float, lz: float, smoothing: float) -> np.ndarray:
+    """Vertical tidal potential per ``Omega^2`` of a box periodic in z, 0 at the midplane.
+
+    With ``a = |z|`` folded into the box (midplane at its centre), ``z_0 = L_z/2 + L_s`` and the
+    smoothing length ``L_s``:
+
+    .. math::
+
+        \phi(a)/\Omega^2 = \frac{a^2}{2} - \frac{L_s^3\,(2a - z_0)}{2\,(z_0 - a)^2}
+                           - \frac{L_s^3}{2 z_0},
+
+    the ``Omega^2 z^2 / 2`` of thesis eq. 4.2b less a term that flattens it at the faces (the
+    "third-order sharp" smoothing of Athena's stratified boxes, Bai & Stone 2010b, with ``L_s``
+    the ghost depth): its slope :func:`periodic_tidal_lever` vanishes at ``a = L_z/2``. The
+    isothermal column in hydrostatic balance with it is ``rho_0 exp(-phi / c_s^2)``.
+
+    >>> float(periodic_tidal_potential(0.0, z_lo=-0.15, lz=0.3, smoothing=0.01))
+    0.0
+    >>> round(float(periodic_tidal_potential(0.1, z_lo=-0.15, lz=0.3, smoothing=0.01)), 6)  # 0.005 unsmoothed
+    0.004991
+    """
+    a = np.abs(_fold(z, z_lo, lz))
+    z0 = 0.5 * lz + smoothing
+    s3 = smoothing**3
+    return 0.5 * a * a - s3 * (2.0 * a - z0) / (2.0 * (z0 - a) ** 2) - s3 / (2.0 * z0)
+
+
+def periodic_tidal_lever(z: np.ndarray, *, z_lo: float, lz: float, smoothing: float) -> np.ndarray:
+    """The lever ``zeta`` of the vertical gravity ``g_z = -Omega^2 zeta`` in a box periodic in z:
+    ``d(phi/Omega^2)/dz`` of :func:`periodic_tidal_potential`,
+
+    .. math:: \zeta = z\,\left[1 - \left(\frac{L_s}{z_0 - |z|}\right)^3\right]
+
+    with ``z`` folded into the box (ghost cells take the values of the cells they copy). It is
+    ``z`` at the midplane and 0 at the faces.
+
+    >>> [round(float(v), 6) + 0.0 for v in periodic_tidal_lever([0.0, 0.1, 0.15, 0.16], z_lo=-0.15, lz=0.3,
+    ...                                                           smoothing=0.01)]
+    [0.0, 0.099537, 0.0, -0.1225]
+    """
+    z = _fold(z, z_lo, lz)
+    z0 = 0.5 * lz + smoothing
+    return z * (1.0 - (smoothing / (z0 - np.abs(z))) ** 3)

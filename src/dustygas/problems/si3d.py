@@ -2,25 +2,32 @@
 
 The box of thesis Figs 4.7-4.10 (and of Athena's ``par_strat3d``, Bai & Stone 2010b): x
 radial and shear-periodic, y azimuthal and periodic, z vertical; units ``Ω = c_s = H = 1``,
-midplane gas density ``ρ_0 = 1``. The gas is the isothermal column ``ρ = ρ_0 e^{-z²/2H²}`` held
-by vertical gravity, with the open vertical boundary that keeps it at rest
-(:mod:`dustygas.grid.boundaries`, ``hydrostatic``), and feels the global radial pressure
-gradient ``2 η v_K Ω x̂`` with ``η v_K = Π c_s``. Particles of one or more species (stopping
-times ``τ_s``, fixed) feel the rotating frame and vertical gravity; they start uniformly in x
-and y and Gaussian in z with scale height ``H_p``, with the multi-species NSH drift of the
-local dust-to-gas ratio at their height (Bai & Stone 2010b, eqs. 6-9; Athena's ``ipert = 0``),
-and the gas cells with the gas's. The dust mass is ``Z`` times the gas column
+midplane gas density ``ρ_0 = 1``. The gas is the isothermal column ``ρ = ρ_0 e^{-z²/2H²}``
+held by vertical gravity, with the open vertical boundary that keeps it at rest
+(:mod:`dustygas.grid.boundaries`, ``hydrostatic``). Once the dust pushes it, the gas flows
+through these boundaries as a whole (Li, Youdin & Simon 2018, ApJ 862, 14, report the same of
+outflow boundaries): up to 0.06 c_s in the 2D box at 160/H, which carries the layer up to 0.05 H
+off the midplane and keeps it several cells thicker than in a periodic box.
+``problem.gas_boundary_z = "periodic"`` with ``particles.boundary_z = "periodic"`` gives the
+periodic box of Athena's ``par_strat3d`` that made the thesis's figure: the potential
+``Ω² z²/2`` flattened within the ghost depth of the faces so that it is periodic and smooth
+(:func:`~dustygas.grid.shearing_box.periodic_tidal_potential`), the column
+``ρ = ρ_0 e^{-φ/c_s²}`` at rest in it, the particles keeping ``-Ω² z`` (they never come near the
+faces). The gas feels the global radial pressure gradient ``2 η v_K Ω x̂`` with
+``η v_K = Π c_s``. Particles of one or more species (stopping times ``τ_s``, fixed) feel the
+rotating frame and vertical gravity; they start uniformly in x and y and Gaussian in z with
+scale height ``H_p``, with the multi-species NSH drift of the local dust-to-gas ratio at their
+height (Bai & Stone 2010b, eqs. 6-9; Athena's ``ipert = 0``), and the gas cells with the gas's. The dust mass is ``Z`` times the gas column
 ``Σ_g = √(2π) ρ_0 H``, split between species in proportion to ``τ_s^mass_power``.
 
 Presets
 -------
 ``si3d`` (default, a laptop)
     thesis Fig 4.7 physics -- ``τ_s = 1``, ``Z = 0.03``, ``Π = 0.05``, box ``0.2 × 0.2 × 0.3 H`` --
-    at 32 × 32 × 48 cells and one particle per cell, for 30 orbits. The layer settles and turns
-    non-linear within two orbits (largest dust density 30-100 ``ρ_g0``, 12-40 times the mean
-    midplane density, from orbit 1 on), but in the first 12 orbits its scale height still swings
-    between 0.006 and 0.03 H and the dominant Fourier mode of ``Σ_d`` is the axisymmetric
-    ``k_x = 2π/L_x`` (measured 2026-12-02).
+    at 32 × 32 × 48 cells and one particle per cell, for 30 orbits. At this resolution (160 cells
+    per H) the settled τ_s = 1 layer is about one cell thick, in Athena 4.2 as in dustygas
+    (``benchmarks/compare_layer.py``; benchmarks/RESULTS.md, 2026-12-04): the preset shows the
+    non-linear state, not a converged layer.
 ``si3d-thesis``
     exactly thesis Fig 4.7: 256 × 256 × 384 cells, 1.8e7 particles (``dustygas run si3d-thesis
     --dry-run`` prints its memory and cost).
@@ -124,7 +131,9 @@ class SI3D(Problem):
                                 "the shear", choices=("nsh", "zero")),
             "gas_gravity": Param(True, "vertical gravity on the gas (a hydrostatic column); false: uniform gas"),
             "gas_boundary_z": Param("hydrostatic", "gas boundary along z (hydrostatic: open, keeps the column at "
-                                    "rest)", choices=("hydrostatic", "reflecting", "outflow", "periodic")),
+                                    "rest; periodic with gas_gravity: the potential smoothed at the faces, as "
+                                    "Athena's par_strat3d; set particles.boundary_z = periodic with it)",
+                                    choices=("hydrostatic", "reflecting", "outflow", "periodic")),
             "orbital_advection": Param(True, "store velocities relative to the shear and advect by it exactly "
                                        "(FARGO)"),
             "seed": Param(1, "random seed of the particle positions", min=0),
@@ -138,9 +147,6 @@ class SI3D(Problem):
         if 3.0 * p.Hp > 0.5 * g.lz:
             raise ConfigError(f"problem.Hp = {p.Hp:g}: the layer (3 H_p = {3 * p.Hp:g} H) does not fit in the box "
                               f"(grid.lz / 2 = {0.5 * g.lz:g} H); lower problem.Hp or raise grid.lz")
-        if p.gas_gravity and p.gas_boundary_z == "periodic":
-            raise ConfigError("problem.gas_boundary_z = 'periodic' with problem.gas_gravity = true: a stratified "
-                              "column is not periodic in z")
         if not p.gas_gravity and p.gas_boundary_z == "hydrostatic":
             raise ConfigError("problem.gas_boundary_z = 'hydrostatic' needs problem.gas_gravity = true")
         if len(p.taus) > 32:
@@ -173,7 +179,7 @@ class SI3D(Problem):
         Hp = np.full(nsp, p.Hp)
         x, y, z = mesh.meshgrid()
         shape = tuple(reversed(mesh.shape))
-        rho = np.exp(-0.5 * z**2) if p.gas_gravity else np.ones_like(z)
+        rho = np.exp(-gas.tidal_potential(z)) if p.gas_gravity else np.ones_like(z)  # c_s = Omega = 1
         shear = 0.0 if p.orbital_advection else -1.5
         if p.velocities == "nsh":
             eq = nsh_profile(mesh.centers(2), taus, masses, Hp, p.Pi)
