@@ -156,7 +156,7 @@ def _fold(z: np.ndarray, z_lo: float, lz: float) -> np.ndarray:
 
 
 def periodic_tidal_potential(z: np.ndarray, *, z_lo: float, lz: float, smoothing: float) -> np.ndarray:
-    """Vertical tidal potential per ``Omega^2`` of a box periodic in z, 0 at the midplane.
+    r"""Vertical tidal potential per ``Omega^2`` of a box periodic in z, 0 at the midplane.
 
     With ``a = |z|`` folded into the box (midplane at its centre), ``z_0 = L_z/2 + L_s`` and the
     smoothing length ``L_s``:
@@ -183,7 +183,7 @@ def periodic_tidal_potential(z: np.ndarray, *, z_lo: float, lz: float, smoothing
 
 
 def periodic_tidal_lever(z: np.ndarray, *, z_lo: float, lz: float, smoothing: float) -> np.ndarray:
-    """The lever ``zeta`` of the vertical gravity ``g_z = -Omega^2 zeta`` in a box periodic in z:
+    r"""The lever ``zeta`` of the vertical gravity ``g_z = -Omega^2 zeta`` in a box periodic in z:
     ``d(phi/Omega^2)/dz`` of :func:`periodic_tidal_potential`,
 
     .. math:: \zeta = z\,\left[1 - \left(\frac{L_s}{z_0 - |z|}\right)^3\right]
