@@ -31,3 +31,15 @@ def test_a_stopped_run_is_continued_and_a_finished_one_reused(tmp_path):
     log = RunDirectory(path).log_file.read_text()
     assert finished_run("toy-oscillator", path, ["run.max_cycles=50"]) == path  # reused: nothing runs
     assert RunDirectory(path).log_file.read_text() == log
+
+
+def test_a_finished_run_whose_history_ends_before_tlim_is_reused(tmp_path):
+    """History rows come at the run.dt_history cadence: a run to t = 1.005 with rows every 0.1 has
+    its last row at t = 1.0, but ended at 1.005 with a checkpoint; it is reused, not restarted."""
+    path = tmp_path / "runs" / "toy"
+    finished_run("toy-oscillator", path, ["run.tlim=1.005", "run.dt_history=0.1"])
+    assert _end_time(path) == pytest.approx(1.0, abs=1e-12)  # the history alone says "not there"
+    assert is_finished(path)
+    log, checkpoints = RunDirectory(path).log_file.read_text(), RunDirectory(path).checkpoints()
+    assert finished_run("toy-oscillator", path) == path
+    assert RunDirectory(path).log_file.read_text() == log and RunDirectory(path).checkpoints() == checkpoints

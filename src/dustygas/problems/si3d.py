@@ -2,18 +2,18 @@
 
 The box of thesis Figs 4.7-4.10 (and of Athena's ``par_strat3d``, Bai & Stone 2010b): x
 radial and shear-periodic, y azimuthal and periodic, z vertical; units ``Ω = c_s = H = 1``,
-midplane gas density ``ρ_0 = 1``. The gas is the isothermal column ``ρ = ρ_0 e^{-z²/2H²}``
-held by vertical gravity, with the open vertical boundary that keeps it at rest
-(:mod:`dustygas.grid.boundaries`, ``hydrostatic``). Once the dust pushes it, the gas flows
-through these boundaries as a whole (Li, Youdin & Simon 2018, ApJ 862, 14, report the same of
-outflow boundaries): up to 0.06 c_s in the 2D box at 160/H, which carries the layer up to 0.05 H
-off the midplane and keeps it several cells thicker than in a periodic box.
-``problem.gas_boundary_z = "periodic"`` with ``particles.boundary_z = "periodic"`` gives the
-periodic box of Athena's ``par_strat3d`` that made the thesis's figure: the potential
-``Ω² z²/2`` flattened within the ghost depth of the faces so that it is periodic and smooth
-(:func:`~dustygas.grid.shearing_box.periodic_tidal_potential`), the column
-``ρ = ρ_0 e^{-φ/c_s²}`` at rest in it, the particles keeping ``-Ω² z`` (they never come near the
-faces). The gas feels the global radial pressure gradient ``2 η v_K Ω x̂`` with
+midplane gas density ``ρ_0 = 1``. The gas is the isothermal column ``ρ = ρ_0 e^{-φ/c_s²}`` at
+rest in the box of Athena's ``par_strat3d`` that made the thesis's figure, periodic in z: the
+tidal potential ``φ = Ω² z²/2`` flattened within the ghost depth of the faces so that it is
+periodic and smooth (:func:`~dustygas.grid.shearing_box.periodic_tidal_potential`); the
+particles keep ``-Ω² z`` (they never come near the faces). ``problem.gas_boundary_z =
+"hydrostatic"`` gives instead open faces that keep the column ``ρ_0 e^{-z²/2H²}`` at rest
+(:mod:`dustygas.grid.boundaries`), with the particles leaving through them
+(``particles.boundary_z = "auto"``). Once the dust pushes it, the gas column flows through
+such open faces as a whole (Li, Youdin & Simon 2018, ApJ 862, 14, report the same of outflow
+boundaries): up to 0.06 c_s in the 2D box at 160/H, which carries the layer up to 0.05 H off
+the midplane and keeps it several cells thicker than in the periodic box.
+The gas feels the global radial pressure gradient ``2 η v_K Ω x̂`` with
 ``η v_K = Π c_s``. Particles of one or more species (stopping times ``τ_s``, fixed) feel the
 rotating frame and vertical gravity; they start uniformly in x and y and Gaussian in z with
 scale height ``H_p``, with the multi-species NSH drift of the local dust-to-gas ratio at their
@@ -116,7 +116,7 @@ class SI3D(Problem):
         "run": with_defaults(RUN_SCHEMA, tlim=30 * ORBIT, dt_history=0.1, dt_snapshot=ORBIT, checkpoint_wall=600.0),
         "grid": with_defaults(GRID, nx=32, ny=32, nz=48, lx=0.2, ly=0.2, lz=0.3),
         "scheme": with_defaults(SI_SCHEME, cfl=0.3),
-        "particles": with_defaults(PARTICLES, boundary_z="outflow"),
+        "particles": PARTICLES,
         "problem": {
             "taus": Param([1.0], "stopping time tau_s = Omega t_s of each species (fixed)", "1/Omega", min=0.0,
                           min_open=True),
@@ -130,9 +130,9 @@ class SI3D(Problem):
             "velocities": Param("nsh", "initial velocities: the local multi-species NSH drift, or zero relative to "
                                 "the shear", choices=("nsh", "zero")),
             "gas_gravity": Param(True, "vertical gravity on the gas (a hydrostatic column); false: uniform gas"),
-            "gas_boundary_z": Param("hydrostatic", "gas boundary along z (hydrostatic: open, keeps the column at "
-                                    "rest; periodic with gas_gravity: the potential smoothed at the faces, as "
-                                    "Athena's par_strat3d; set particles.boundary_z = periodic with it)",
+            "gas_boundary_z": Param("periodic", "gas boundary along z (periodic: with gas_gravity the potential "
+                                    "smoothed at the faces, as Athena's par_strat3d; hydrostatic: open, keeps the "
+                                    "column at rest; particles.boundary_z = auto follows: periodic, else outflow)",
                                     choices=("hydrostatic", "reflecting", "outflow", "periodic")),
             "orbital_advection": Param(True, "store velocities relative to the shear and advect by it exactly "
                                        "(FARGO)"),

@@ -16,8 +16,10 @@ stronger than Simon et al.'s 0.05 to reach the Hill density at all), switched on
 run to 8. At ``τ_s = 1`` and ``Z = 0.03`` the layer settles and turns non-linear within two orbits
 (the largest dust density is ~60 ``ρ_g0``, ~30 times the mean midplane density, from orbit 2 on),
 so at 5 orbits the streaming instability is saturated and the run stays within about an hour of
-the two-core laptop. The potential is shear-periodic in x, periodic in y and vacuum in z (the particles
-leave through open z faces).
+the two-core laptop. The potential is shear-periodic in x and periodic in y; along z it follows the
+particles (``gravity.boundary_z = "auto"``): periodic in the preset's periodic box (the mean density
+subtracted), vacuum with open z faces (``problem.gas_boundary_z = "hydrostatic"``: isolated above
+and below, as Simon et al. 2016; :mod:`dustygas.grid.gravity`).
 """
 
 from __future__ import annotations

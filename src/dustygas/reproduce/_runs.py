@@ -18,17 +18,29 @@ __all__ = ["finished_run", "is_finished"]
 
 
 def is_finished(path: str | Path) -> bool:
-    """Whether the run directory ``path`` holds a run whose history reaches its ``run.tlim``."""
+    """Whether the run directory ``path`` holds a run that reached its ``run.tlim``: its newest
+    checkpoint (every run ends with one) or its history is at ``run.tlim``. The history alone
+    can end a little before: its rows come at the ``run.dt_history`` cadence."""
+    import h5py
+
     from ..config import load_toml
     from ..io.hdf5 import read_h5
     from ..io.rundir import RunDirectory
 
     rd = RunDirectory(path)
-    if not (rd.history_file.exists() and rd.config_file.exists()):
+    if not rd.config_file.exists():
         return False
-    tlim = float(load_toml(rd.config_file)["run"]["tlim"])
+    tlim = float(load_toml(rd.config_file)["run"]["tlim"]) * (1 - 1e-12)
+    for chk in reversed(rd.checkpoints()):
+        try:
+            with h5py.File(chk, "r") as f:
+                return float(f.attrs["time"]) >= tlim
+        except (OSError, KeyError, ValueError):
+            continue  # damaged: the one before (restart falls back the same way)
+    if not rd.history_file.exists():
+        return False
     t = read_h5(rd.history_file)[0]["time"]
-    return t.size > 0 and float(t[-1]) >= tlim * (1 - 1e-12)
+    return t.size > 0 and float(t[-1]) >= tlim
 
 
 def finished_run(problem: str, path: str | Path, overrides: Iterable[str] = (), progress: bool | None = False) -> Path:

@@ -2,8 +2,8 @@
 
 The thesis's Athena run (§4.5, Fig 4.7 caption) is ``dustygas run si3d-thesis``; these figures
 come from the laptop preset ``si3d`` (the same physics at 32 × 32 × 48 cells; ``dustygas
-reproduce --full``), run once into ``<output>/runs/si3d`` and reused by every figure (about an
-hour of a quiet core), or from any finished run given with ``dustygas reproduce ... --from
+reproduce --full``), run once into ``<output>/runs/si3d`` and reused by every figure (66 min as
+two MPI ranks on two cores; in one process with two threads somewhat longer), or from any finished run given with ``dustygas reproduce ... --from
 RUN``. The quick default (``reproduce --all`` included) runs 10 of its 30 orbits at half the
 resolution, 16 × 16 × 24 (a sixteenth of the cost per orbit), into ``<output>/runs/si3d-quick``:
 
@@ -28,8 +28,9 @@ from . import figure
 SLAB = 0.03  # H: the slab half-width of thesis Figs 4.7-4.9
 
 
-#: the quick default: the si3d preset at half its resolution and to 10 of its 30 orbits (about
-#: 7 CPU-minutes, extrapolated from its first 4 orbits on the 2-core machine)
+#: the quick default: the si3d preset at half its resolution and to 10 of its 30 orbits (18 179
+#: steps, 62 s on the quiet 2-core machine with two threads, 2026-12-04; to 15 orbits its layer
+#: puffs up in the last five and the steady-H_p check fails: 2.3)
 QUICK = ("grid.nx=16", "grid.ny=16", "grid.nz=24", "run.tlim=62.83185307179586")
 
 
@@ -62,7 +63,7 @@ def _snaps(run: Path, which: list[float]):
 
 
 @figure("fig4.7", "Dust particles near the midplane and the boundaries, coloured by density (si3d run)",
-        cost="5 min (shared si3d run; --full: 1 h)")
+        cost="1 min (shared si3d run; --full: 1-2 h)")
 def fig4_7(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..plot.particles import slab_figure
 
@@ -73,7 +74,7 @@ def fig4_7(output: Path, quick: bool = True, run: Path | None = None) -> list[Pa
 
 
 @figure("fig4.8", "Midplane slab |z| < 0.03 H of the dust (x-y), halfway and at the end (si3d run)",
-        cost="5 min (shared si3d run; --full: 1 h)")
+        cost="1 min (shared si3d run; --full: 1-2 h)")
 def fig4_8(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..plot.particles import slab_figure
 
@@ -85,7 +86,7 @@ def fig4_8(output: Path, quick: bool = True, run: Path | None = None) -> list[Pa
 
 
 @figure("fig4.9", "Azimuthal slab |y| < 0.03 H of the dust (x-z), at the start and at the end (si3d run)",
-        cost="5 min (shared si3d run; --full: 1 h)")
+        cost="1 min (shared si3d run; --full: 1-2 h)")
 def fig4_9(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..plot.particles import slab_figure
 
@@ -97,7 +98,7 @@ def fig4_9(output: Path, quick: bool = True, run: Path | None = None) -> list[Pa
 
 
 @figure("fig4.10", "Dust surface density and its 2D FFT; the dominant angle theta_k(t) (si3d run)",
-        cost="5 min (shared si3d run; --full: 1 h)")
+        cost="1 min (shared si3d run; --full: 1-2 h)")
 def fig4_10(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..analysis.stratified import read_snapshot
     from ..io.rundir import RunDirectory
@@ -110,7 +111,7 @@ def fig4_10(output: Path, quick: bool = True, run: Path | None = None) -> list[P
 
 
 @figure("fig1.10", "Maximum dust density versus time (Johansen et al. 2007 analogue, si3d run)",
-        cost="5 min (shared si3d run; --full: 1 h)")
+        cost="1 min (shared si3d run; --full: 1-2 h)")
 def fig1_10(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..analysis.stratified import read_series, read_snapshot
     from ..plot.particles import series_figure
@@ -122,7 +123,7 @@ def fig1_10(output: Path, quick: bool = True, run: Path | None = None) -> list[P
 
 
 @figure("fig1.13", "Particle scale height of every species versus time (Bai & Stone 2010b analogue, si3d run)",
-        cost="5 min (shared si3d run; --full: 1 h)")
+        cost="1 min (shared si3d run; --full: 1-2 h)")
 def fig1_13(output: Path, quick: bool = True, run: Path | None = None) -> list[Path]:
     from ..analysis.stratified import read_series
     from ..config import load_toml
