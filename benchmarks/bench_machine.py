@@ -13,6 +13,10 @@ Two measurements, each in its own process, nothing else should be running:
   1.50-2.27 ms per step and two-thread blocks over 0.95-1.94 ms within three minutes, so a
   ratio of single runs means little; the compute loop beside it stayed within 4 %.
 
+Before and after, ``_cores.py`` probes whether the two CPUs are two cores or one core's two
+hardware threads right now (the si-linA blocks' spread is mostly the machine moving between the
+two: benchmarks/RESULTS.md, 2026-12-05).
+
 Run alone::
 
     flock benchmarks/.lock python benchmarks/bench_machine.py [--seconds 6] [--steps 500]
@@ -27,6 +31,8 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+from _cores import describe, vector_gain
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -88,7 +94,8 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=500, help="si-linA steps per block")
     ap.add_argument("--blocks", type=int, default=8, help="si-linA blocks per process")
     args = ap.parse_args()
-    print(f"# bench_machine {time.strftime('%Y-%m-%d %H:%M')} load {os.getloadavg()[0]:.2f}")
+    print(f"# bench_machine {time.strftime('%Y-%m-%d %H:%M')} load {os.getloadavg()[0]:.2f}  "
+          f"cores: {describe(vector_gain())}")
     rate = {t: run(COMPUTE, t, args.seconds) for t in (1, 2)}
     print(f"compute 1T {summary(rate[1], 1, 'calls/s')}  2T {summary(rate[2], 1, 'calls/s')}  "
           f"2T/1T {statistics.median(rate[2]) / statistics.median(rate[1]):.3f}")
@@ -98,7 +105,7 @@ def main() -> None:
             step[t] += run(STEPS, t, args.steps, args.blocks)
     print(f"si-linA step 1T {summary(step[1], 1e3, 'ms')}  2T {summary(step[2], 1e3, 'ms')}  "
           f"1T/2T of the medians {statistics.median(step[1]) / statistics.median(step[2]):.3f}  "
-          f"load {os.getloadavg()[0]:.2f}")
+          f"load {os.getloadavg()[0]:.2f}  cores: {describe(vector_gain())}")
 
 
 if __name__ == "__main__":

@@ -50,6 +50,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numba  # noqa: E402
+from _cores import describe, vector_gain  # noqa: E402
 
 # Athena 4.2 anchors, one core (reference figures of an earlier machine)
 ATHENA = {
@@ -210,9 +211,10 @@ def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], ro
             jobs.reverse()
         for name, sets, t in jobs:
             key = name if name == "athena" else f"dustygas {name} {t}T"
+            cores = describe(vector_gain()) if (t > 1 or ranks > 1) else ""  # benchmarks/_cores.py
             r = athena_lina(binary, athinput, courant, ranks) if name == "athena" else full_lina(t, sets)
             runs.setdefault(key, []).append(r)
-            print(_line(key, r), flush=True)
+            print(_line(key, r) + (f"  cores before: {cores}" if cores else ""), flush=True)
     ath = statistics.median(r["wall"] for r in runs["athena"])
     ath_cpu = statistics.median(r["cpu"] for r in runs["athena"])
     print(f"# medians over {rounds} round(s); Athena {ath:.1f} s wall, {ath_cpu:.1f} s CPU")

@@ -17,7 +17,10 @@ condition the script prints the wall time with ``--threads 1``, ``--threads 2`` 
 default, as the median and the range over ``--repeat`` repeats (the thread settings alternate
 within each repeat, so a repeat's runs see the same machine), and the ratios default/1T (must
 be <= 1.10 when busy) and 1T/default, 1T/2T (must be >= 1.8 on a quiet machine): the ratio of
-the medians, the range of the per-repeat ratios and the ratio of the best times.
+the medians, the range of the per-repeat ratios and the ratio of the best times. Before each
+repeat ``benchmarks/_cores.py`` probes whether the two CPUs are two cores or one core's two
+hardware threads (the virtual machine moves between the two; printed per repeat as ``2`` or
+``s``), and 1T/2T is also given over the two-core repeats alone when the repeats differ.
 
 Run alone::
 
@@ -35,6 +38,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from _cores import SHARED_BELOW, vector_gain
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = {
@@ -96,7 +101,9 @@ def main() -> None:
                 walls: dict[str, list[float]] = {label: [] for label in args.settings}
                 chosen = set()
                 loads = []
+                shared = []  # per repeat: do the two CPUs share one core right now (benchmarks/_cores.py)?
                 for _ in range(args.repeat):
+                    shared.append(vector_gain() < SHARED_BELOW)
                     for label in args.settings:
                         setting = SETTINGS[label]
                         hog = None
@@ -121,6 +128,11 @@ def main() -> None:
                     cells.append(ratio("1T/default", walls["1T"], walls["default"]))
                 if "2T" in walls and "1T" in walls:
                     cells.append(ratio("1T/2T", walls["1T"], walls["2T"]))
+                    two = [i for i, sh in enumerate(shared) if not sh]
+                    if two and len(two) < len(shared):
+                        cells.append(ratio("1T/2T on two cores", [walls["1T"][i] for i in two],
+                                           [walls["2T"][i] for i in two]))
+                cells.append("cores per repeat " + "".join("s" if sh else "2" for sh in shared))
                 print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}",
                       flush=True)
 

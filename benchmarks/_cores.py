@@ -1,0 +1,62 @@
+"""Whether this machine's two CPUs are two cores right now, or two hardware threads of one.
+
+On the 2-core benchmark machine (a virtual machine) a two-thread figure has two values, minutes
+apart (benchmarks/RESULTS.md, 2026-12-05 "Two threads of the linA step: a bimodal machine"). In
+one state a loop of independent, vectorised multiply-adds on an L1-resident row per thread gains
+1.6-1.75 on two threads; in the other it gains 0.7-0.8 (it loses), while a loop of one dependent
+multiply-add chain per thread gains 2.0 in both -- what two hardware threads of one physical core
+do (they share the vector units; a latency-bound chain leaves them idle for the other thread).
+:func:`vector_gain` measures the first loop in a fresh process (about a second); the benchmarks
+print it beside their two-thread figures so that each figure says which machine it ran on.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+#: below this vector gain the two CPUs share one core's vector units
+SHARED_BELOW = 1.2
+
+PROBE = """
+import time, numba, numpy as np
+from numba import njit, prange
+@njit(parallel=True, fastmath=True)
+def vector(x, reps):
+    for c in prange(2):
+        y = x[c]
+        for r in range(reps):
+            for i in range(y.size):
+                y[i] = y[i] * 0.9999999 + 1e-7
+x = np.ones((2, 1024))
+vector(x, 1)
+best = {}
+for n in (1, 2, 1, 2):
+    numba.set_num_threads(n)
+    for _ in range(8):
+        t0 = time.perf_counter()
+        vector(x, 20000)
+        best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
+print(best[1] / best[2])
+"""
+
+
+def vector_gain() -> float:
+    """Two-thread gain of the vectorised loop (NaN if the machine has fewer than two CPUs)."""
+    out = subprocess.run([sys.executable, "-c", PROBE], capture_output=True, text=True,
+                         env={"NUMBA_NUM_THREADS": "2", **{k: v for k, v in __import__("os").environ.items()
+                                                         if k != "NUMBA_NUM_THREADS"}})
+    try:
+        return float(out.stdout.split()[-1])
+    except (IndexError, ValueError):
+        return float("nan")
+
+
+def describe(gain: float) -> str:
+    """``"2 cores (vector gain 1.71)"`` or ``"1 core's 2 hardware threads (vector gain 0.74)"``."""
+    kind = "1 core's 2 hardware threads" if gain < SHARED_BELOW else "2 cores"
+    return f"{kind} (vector gain {gain:.2f})"
+
+
+if __name__ == "__main__":
+    print(describe(vector_gain()))
