@@ -211,7 +211,8 @@ def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], ro
             jobs.reverse()
         for name, sets, t in jobs:
             key = name if name == "athena" else f"dustygas {name} {t}T"
-            cores = describe(vector_gain()) if (t > 1 or ranks > 1) else ""  # benchmarks/_cores.py
+            parallel = ranks > 1 if name == "athena" else t > 1
+            cores = describe(vector_gain()) if parallel else ""  # benchmarks/_cores.py
             r = athena_lina(binary, athinput, courant, ranks) if name == "athena" else full_lina(t, sets)
             runs.setdefault(key, []).append(r)
             print(_line(key, r) + (f"  cores before: {cores}" if cores else ""), flush=True)
