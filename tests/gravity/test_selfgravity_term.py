@@ -109,7 +109,8 @@ def test_gathered_acceleration_of_a_density_wave():
 @pytest.mark.parametrize("args, fragment", [
     (["--set", "gravity.g_tilde=0"], "gravity.g_tilde"),
     (["--set", "gravity.g_tilde=-0.1"], "gravity.g_tilde"),
-    (["--set", "problem.gas_boundary_z=hydrostatic", "--set", "gravity.boundary_z=periodic"], "gravity.boundary_z = 'periodic' with particles.boundary_z = 'outflow'"),
+    (["--set", "problem.gas_boundary_z=hydrostatic", "--set", "gravity.boundary_z=periodic"],  # open z faces
+     "gravity.boundary_z = 'periodic' with particles.boundary_z = 'outflow'"),
     (["--set", "gravity.t_on=1000"], "gravity.t_on = 1000: the run ends before"),
 ])
 def test_bad_gravity_input_one_line_exit_2(tmp_path, args, fragment):

@@ -2,13 +2,13 @@
 
 ``mpiexec -n N python -m dustygas run`` of si-linA (2D x-z, periodic, 32², one particle per cell)
 and si3d (8 x 8 x 16, a settled layer, with open z faces that gas and particles leave through and
-in the preset's periodic box; uneven z blocks on 3 and 4 ranks) against the same run in one process (``-n 1``): every snapshot array (gas, every
-particle array, the dust density) and every history column is identical bit for bit -- the
-budgets too (the particle and gas terms' impulse, the gas's radial mass, y-momentum and z-face
-budgets, the particles' losses): each is a running total per row of cells held by one block
-and summed in a fixed order, and the checkpoint holds the rows, so a restart on another rank
-count is bit for bit as well. On the ranks' run
-the budgets hold to the serial tests' tolerances (``tests/particles/test_conservation.py``):
+in the preset's periodic box; uneven z blocks on 3 and 4 ranks) against the same run in one
+process (``-n 1``): every snapshot array (gas, every particle array, the dust density) and
+every history column is identical bit for bit -- the budgets too (the particle and gas terms'
+impulse, the gas's radial mass, y-momentum and z-face budgets, the particles' losses): each is a
+running total per row of cells held by one block and summed in a fixed order, and the
+checkpoint holds the rows, so a restart on another rank count is bit for bit as well. On the
+ranks' run the budgets hold to the serial tests' tolerances (``tests/particles/test_conservation.py``):
 mass (with what left through the open faces) to 1e-13 (periodic) and 1e-12, the z momentum
 of the unforced periodic box to 1e-12 of ``(M_gas + M_dust) η v_K``.
 """

@@ -17,8 +17,9 @@ The gas feels the global radial pressure gradient ``2 η v_K Ω x̂`` with
 ``η v_K = Π c_s``. Particles of one or more species (stopping times ``τ_s``, fixed) feel the
 rotating frame and vertical gravity; they start uniformly in x and y and Gaussian in z with
 scale height ``H_p``, with the multi-species NSH drift of the local dust-to-gas ratio at their
-height (Bai & Stone 2010b, eqs. 6-9; Athena's ``ipert = 0``), and the gas cells with the gas's. The dust mass is ``Z`` times the gas column
-``Σ_g = √(2π) ρ_0 H``, split between species in proportion to ``τ_s^mass_power``.
+height (Bai & Stone 2010b, eqs. 6-9; Athena's ``ipert = 0``), and the gas cells with the gas's.
+The dust mass is ``Z`` times the gas column ``Σ_g = √(2π) ρ_0 H``, split between species in
+proportion to ``τ_s^mass_power``.
 
 Presets
 -------

@@ -3,9 +3,10 @@
 The thesis's Athena run (§4.5, Fig 4.7 caption) is ``dustygas run si3d-thesis``; these figures
 come from the laptop preset ``si3d`` (the same physics at 32 × 32 × 48 cells; ``dustygas
 reproduce --full``), run once into ``<output>/runs/si3d`` and reused by every figure (66 min as
-two MPI ranks on two cores; in one process with two threads somewhat longer), or from any finished run given with ``dustygas reproduce ... --from
-RUN``. The quick default (``reproduce --all`` included) runs 10 of its 30 orbits at half the
-resolution, 16 × 16 × 24 (a sixteenth of the cost per orbit), into ``<output>/runs/si3d-quick``:
+two MPI ranks on two cores; in one process with two threads somewhat longer), or from any
+finished run given with ``dustygas reproduce ... --from RUN``. The quick default (``reproduce
+--all`` included) runs 10 of its 30 orbits at half the resolution, 16 × 16 × 24 (a sixteenth of
+the cost per orbit), into ``<output>/runs/si3d-quick``:
 
 * Fig 4.7 -- particles near the midplane (``|z| < 0.03 H``) and near two boundaries, coloured by
   the dust density, at the end of the run;
