@@ -65,7 +65,8 @@ def _write(path, columns):
 def test_saturation_checks_on_planted_series(tmp_path):
     """The si3d figures' checks: the window is the last 10 orbits (5-15 of a 15-orbit run);
     filaments 12x the midplane mean pass and 8x fail; non-axisymmetric FFT peaks >= 4x shot noise in 3 of 5
-    window snapshots pass and 2 of 5 (one at 3.9x) fail; a layer steady in the window passes, one thinning by half fails."""
+    window snapshots pass and 2 of 5 (one at 3.9x) fail; a layer steady over orbits 10-20 of a 20-orbit run passes,
+    one thinning by half fails, and the same thinning in a 15-orbit run is not judged."""
     from dustygas.reproduce.si3d_checks import fig1_10_checks, fig1_13_checks, fig4_10_checks, window_start
 
     assert (window_start(15.0), window_start(30.0), window_start(6.0)) == (5.0, 20.0, 2.0)
@@ -83,10 +84,17 @@ def test_saturation_checks_on_planted_series(tmp_path):
                                           "nonaxisymmetric_over_noise": np.array(peak, dtype=float)})
         (check,) = fig4_10_checks(tmp_path)
         assert check.value == pytest.approx(np.mean(np.array(peak[2:]) >= 4.0)) and check.passed is passes
-    steady = np.where(early, 0.05, 0.01 * (1 + 0.1 * np.sin(3 * t)))
-    thinning = np.where(t < 10.0, 0.02, 0.01)
+    # the steady layer is judged over orbits 10-20 of a 20-orbit run
+    t20 = np.linspace(0.0, 20.0, 201)
+    steady = np.where(t20 < 10.0, 0.05, 0.01 * (1 + 0.1 * np.sin(3 * t20)))
+    thinning = np.where(t20 < 15.0, 0.02, 0.01)
     for hp, passes in ((steady, True), (thinning, False)):
-        _write(tmp_path / "fig1_13.csv", {"t_orbits": t, "Hp_0": hp})
+        _write(tmp_path / "fig1_13.csv", {"t_orbits": t20, "Hp_0": hp})
         (check,) = fig1_13_checks(tmp_path)
-        assert check.passed is passes
+        assert check.judged and check.passed is passes
     assert check.value == pytest.approx(0.5, rel=1e-12)
+    # a 15-orbit run (window from 5 orbits) is too short: not judged, neither passed nor failed
+    _write(tmp_path / "fig1_13.csv", {"t_orbits": t, "Hp_0": np.where(t < 10.0, 0.02, 0.01)})
+    (check,) = fig1_13_checks(tmp_path)
+    assert not check.judged and not check.passed and check.value == pytest.approx(0.5, rel=1e-12)
+    assert "not judged (the window starts at 5 orbits" in check.describe()

@@ -15,7 +15,7 @@ import dustygas.reproduce as registry
 from dustygas.plot import Column, new_figure, save_figure
 from dustygas.reproduce import FigureSpec, figure_names, get_figure
 from dustygas.reproduce.captions import THESIS_CAPTIONS
-from dustygas.reproduce.checks import compare
+from dustygas.reproduce.checks import compare, not_judged
 from dustygas.reproduce.gallery import make_figures, read_manifests
 
 
@@ -72,6 +72,33 @@ def test_index_shows_figures_captions_checks_and_numbers(tmp_path, failing_figur
     assert json.loads((tmp_path / "gallery" / "fig3.5.json").read_text())["checks"][0]["passed"] is True
 
 
+def test_a_check_not_judged_is_neither_passed_nor_failed(tmp_path, capsys):
+    """A figure with one passing check and one the data cannot decide: the command exits 0, prints
+    NOT JUDGED with the reason, and the page counts it apart ("1 of 2 checks passed, 1 not judged")."""
+    from dustygas.cli import main
+
+    def line(output: Path, quick: bool = True):
+        fig, ax = new_figure()
+        x = np.linspace(0, 1, 11)
+        ax.plot(x, 2 * x)
+        return save_figure(fig, output / "test_line2.png", [Column("x", x, "1"), Column("y", 2 * x, "1")])
+
+    def checks(output: Path):
+        return [compare("slope", 2.0, 2.0, rtol=1e-6), not_judged("steady", 1.5, "too short a run")]
+
+    registry.figure("test-open", "a line", checks=checks)(line)
+    try:
+        status = main(["reproduce", "test-open", "-o", str(tmp_path)])
+    finally:
+        registry._FIGURES.pop("test-open")
+    assert status == 0
+    assert "NOT JUDGED steady: 1.5 (too short a run)" in capsys.readouterr().err
+    page = (tmp_path / "index.html").read_text()
+    assert "1 of 2 checks passed, 1 not judged" in page and "NOT JUDGED" in page
+    (record,) = read_manifests(tmp_path)
+    assert record.passed and record.checks[1]["judged"] is False and record.checks[1]["passed"] is False
+
+
 def test_gallery_accumulates_and_a_broken_figure_is_shown(tmp_path):
     def broken(output, quick=True):
         raise RuntimeError("no data")
@@ -122,16 +149,20 @@ def browser_check(folder: Path, expected: int) -> None:
 @pytest.mark.slow
 def test_full_gallery_opens_in_headless_chromium(tmp_path):
     """``dustygas reproduce --all -o DIR``: every registered figure is in DIR/index.html, every
-    check passes, and the page opens in headless Chromium without console errors with every image
-    loaded."""
+    check passes but one that the quick runs cannot decide (the steady layer of Fig 1.13 needs a
+    run of 20 orbits, the quick one has 10), and the page opens in headless Chromium without
+    console errors with every image loaded."""
     from dustygas.cli import main
+    from dustygas.reproduce.checks import verdict
 
     names = figure_names()
     status = main(["reproduce", "--all", "-o", str(tmp_path)])
     records = read_manifests(tmp_path)
     assert [r.name for r in records] == names
-    failed = [(r.name, r.error, [c for c in r.checks if not c["passed"]]) for r in records if not r.passed]
+    failed = [(r.name, r.error, [c for c in r.checks if verdict(c) == "FAIL"]) for r in records if not r.passed]
     assert status == 0 and not failed, failed
+    open_checks = [(r.name, c["name"]) for r in records for c in r.checks if verdict(c) == "NOT JUDGED"]
+    assert open_checks == [("fig1.13", "Hp_0: mean scale height, second half of the window / first half")]
     expected = sum(1 for r in records for f in r.files if f.endswith(".png"))
     browser_check(tmp_path, expected)
 

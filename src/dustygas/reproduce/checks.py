@@ -14,6 +14,13 @@ exits with status 1 if one fails::
 True
 >>> compare("pi", 3.0, 3.141592653589793, rtol=1e-3).describe()
 'pi: 3 vs 3.14159 (rtol 0.001): FAIL'
+
+A check whose premise the data do not meet (a run too short to judge a steady state, say) is
+made with :func:`not_judged`: it is neither passed nor failed, and every report says so with its
+reason; a figure with such a check still passes if no other check fails.
+
+>>> not_judged("steady layer", 1.17, "the run is 10 orbits, a steady state needs 20").describe()
+'steady layer: 1.17 not judged (the run is 10 orbits, a steady state needs 20)'
 """
 
 from __future__ import annotations
@@ -22,7 +29,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
-__all__ = ["Check", "compare", "within"]
+__all__ = ["Check", "compare", "within", "not_judged", "verdict"]
 
 
 @dataclass(frozen=True)
@@ -30,6 +37,8 @@ class Check:
     """One quantitative check: ``value`` against ``expected`` within ``tolerance``.
 
     ``reference`` names where ``expected`` comes from (an equation, a paper, a table).
+    ``judged`` is False for a check the data cannot decide (:func:`not_judged`; ``passed`` is
+    then False too, and ``tolerance`` holds the reason).
     """
 
     name: str
@@ -38,9 +47,13 @@ class Check:
     tolerance: str
     passed: bool
     reference: str = ""
+    judged: bool = True
 
     def describe(self) -> str:
-        """One line: ``name: value vs expected (tolerance): PASS|FAIL``."""
+        """One line: ``name: value vs expected (tolerance): PASS|FAIL``, or ``name: value not
+        judged (reason)``."""
+        if not self.judged:
+            return f"{self.name}: {self.value:.6g} not judged ({self.tolerance})"
         exp = f"{self.expected:.6g}" if isinstance(self.expected, (int, float)) else str(self.expected)
         return f"{self.name}: {self.value:.6g} vs {exp} ({self.tolerance}): {'PASS' if self.passed else 'FAIL'}"
 
@@ -69,3 +82,15 @@ def within(name: str, value: float, low: float, high: float, reference: str = ""
     value = float(value)
     ok = math.isfinite(value) and low <= value <= high
     return Check(name, value, f"[{low:.6g}, {high:.6g}]", "range", bool(ok), reference)
+
+
+def not_judged(name: str, value: float, reason: str, reference: str = "") -> Check:
+    """A check the data cannot decide, with the ``reason`` (shown in its place of a tolerance)."""
+    return Check(name, float(value), "not judged", reason, False, reference, judged=False)
+
+
+def verdict(check: dict[str, Any]) -> str:
+    """``PASS``, ``FAIL`` or ``NOT JUDGED`` for a check as stored in a manifest (:meth:`Check.to_dict`)."""
+    if not check.get("judged", True):
+        return "NOT JUDGED"
+    return "PASS" if check["passed"] else "FAIL"

@@ -26,7 +26,7 @@ from typing import Any, Iterable
 from .._version import __version__
 from ..io.atomic import atomic_write_text
 from . import FigureSpec, _key, get_figure
-from .checks import Check
+from .checks import Check, verdict
 
 __all__ = ["FigureRecord", "make_figures", "write_index", "read_manifests"]
 
@@ -51,7 +51,7 @@ class FigureRecord:
 
     @property
     def passed(self) -> bool:
-        return not self.error and all(c["passed"] for c in self.checks)
+        return not self.error and all(verdict(c) != "FAIL" for c in self.checks)
 
     def to_dict(self) -> dict[str, Any]:
         return {k: getattr(self, k) for k in self.__dataclass_fields__}
@@ -180,9 +180,10 @@ def _checks_table(checks: list[dict[str, Any]]) -> str:
         exp = c["expected"]
         exp = f"{exp:.6g}" if isinstance(exp, (int, float)) else exp
         ref = f"<br><span class='meta'>{_esc(c.get('reference', ''))}</span>" if c.get("reference") else ""
-        verdict = "<span class='pass'>PASS</span>" if c["passed"] else "<span class='fail'>FAIL</span>"
+        mark = {"PASS": "<span class='pass'>PASS</span>", "FAIL": "<span class='fail'>FAIL</span>",
+                "NOT JUDGED": "<span class='meta'>NOT JUDGED</span>"}[verdict(c)]
         rows.append(f"<tr><td>{_esc(c['name'])}{ref}</td><td>{_esc(value)}</td><td>{_esc(exp)}</td>"
-                    f"<td>{_esc(c['tolerance'])}</td><td>{verdict}</td></tr>")
+                    f"<td>{_esc(c['tolerance'])}</td><td>{mark}</td></tr>")
     rows.append("</table>")
     return "\n".join(rows)
 
@@ -216,7 +217,8 @@ def write_index(output: str | Path) -> Path:
     output = Path(output)
     records = read_manifests(output)
     n_checks = sum(len(r.checks) for r in records)
-    n_failed = sum(1 for r in records for c in r.checks if not c["passed"])
+    n_failed = sum(1 for r in records for c in r.checks if verdict(c) == "FAIL")
+    n_open = sum(1 for r in records for c in r.checks if verdict(c) == "NOT JUDGED")
     n_errors = sum(1 for r in records if r.error)
     nav = " ".join(f"<a href='#{_esc(r.name)}'>{_esc(r.name)}</a>" for r in records)
     body = "\n".join(_section(r, output) for r in records)
@@ -228,7 +230,7 @@ def write_index(output: str | Path) -> Path:
 <style>{_CSS}</style></head>
 <body>
 <h1>dustygas: the thesis's computational figures</h1>
-<p class="summary">{len(records)} figures, {n_checks - n_failed} of {n_checks} checks passed{f", {n_failed} failed" if n_failed else ""}{f", {n_errors} figures failed to build" if n_errors else ""}.
+<p class="summary">{len(records)} figures, {n_checks - n_failed - n_open} of {n_checks} checks passed{f", {n_failed} failed" if n_failed else ""}{f", {n_open} not judged" if n_open else ""}{f", {n_errors} figures failed to build" if n_errors else ""}.
 Regenerate with <code>dustygas reproduce --all -o {_esc(output.name)}</code>.</p>
 <nav>{nav}</nav>
 {body}
