@@ -15,6 +15,10 @@ defined inside the dustygas package only:
   other's files, and nothing is ever deleted. Two processes compiling or loading at once cannot
   break each other: numba writes each file under a unique temporary name and renames it.
 
+A data file that cannot be read back (damaged on disk, truncated by a copy taken mid-write,
+edited by a tool that took it for text) is not fatal: the kernel is compiled afresh with a
+warning naming it, and the new file replaces the damaged one.
+
 The cache directory is numba's usual choice (``NUMBA_CACHE_DIR``, else the in-tree
 ``__pycache__``, else the user-wide cache). Files of source versions that no longer exist stay
 there (a few MB per version) until ``__pycache__`` is cleared.
@@ -25,6 +29,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import re
+import warnings
 from pathlib import Path
 
 __all__ = ["install", "source_stamp"]
@@ -150,10 +155,31 @@ def _locator_class():
     return DependencyStampLocator
 
 
+def _tolerant_load(original):
+    """numba's ``Cache.load_overload`` that compiles afresh, with a warning, when a dustygas
+    kernel's cached data cannot be read back (any other cache behaves as before)."""
+
+    def load_overload(self, sig, target_context):
+        try:
+            return original(self, sig, target_context)
+        except Exception as exc:
+            if not getattr(self._impl.locator, "_dustygas_locator", False):
+                raise
+            warnings.warn(f"dustygas: the cached compiled code of {self._name} could not be read "
+                          f"({type(exc).__name__}: {exc}); compiling it afresh", RuntimeWarning, stacklevel=2)
+            return None
+
+    load_overload._dustygas_tolerant = True
+    return load_overload
+
+
 def install() -> None:
-    """Put the dustygas locator first in numba's list (idempotent)."""
+    """Put the dustygas locator first in numba's list and make a damaged cache file of a dustygas
+    kernel a recompilation instead of an error (idempotent)."""
     from numba.core import caching
 
+    if not getattr(caching.Cache.load_overload, "_dustygas_tolerant", False):
+        caching.Cache.load_overload = _tolerant_load(caching.Cache.load_overload)
     classes = caching.CacheImpl._locator_classes
     if any(getattr(c, "_dustygas_root", None) == _ROOT for c in classes):
         return

@@ -6,7 +6,8 @@ cache, a third loads it from the cache, and after an edit of the kernel *shape* 
 The rendered value is the cubic M4 shape at q = 1.5, f = (2 - q)^3 / 4 = 1/32 (Monaghan &
 Lattanzio 1985), exactly; the edit doubles the coefficient, so the value becomes 1/16.
 For the kernels of grid, particles, sph and linear, a second test edits (in a copy) a file
-each one inlines from and checks that the kernel's source stamp changes (no compilation).
+each one inlines from and checks that the kernel's source stamp changes (no compilation). A
+damaged cache file is compiled afresh, with a warning.
 """
 
 import json
@@ -63,6 +64,26 @@ def test_cross_file_edit_recompiles_and_concurrent_processes_share_the_cache(tmp
     kernels.write_text(text.replace(old, "return 0.5 * t2 * t2 * t2 - t1 * t1 * t1,"))
     edited = _result(_start(tmp_path))
     assert edited["value"] == 1.0 / 16.0 and edited["misses"] == 1 and edited["hits"] == 0
+
+
+def test_a_damaged_cache_file_is_compiled_afresh(tmp_path):
+    """Every data file of the render kernel cut to half its length (as a copy taken mid-write would
+    leave it): the next process warns, compiles afresh and renders 1/32; the one after loads the
+    rewritten file from the cache."""
+    shutil.copytree(SRC, tmp_path / "dustygas", ignore=shutil.ignore_patterns("__pycache__"))
+    assert _result(_start(tmp_path))["misses"] == 1
+    data = sorted((tmp_path / "dustygas" / "sph" / "__pycache__").glob("render._render-*.nbc"))
+    assert data
+    for file in data:
+        file.write_bytes(file.read_bytes()[: file.stat().st_size // 2])
+    proc = _start(tmp_path)
+    out, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    damaged = json.loads(out.strip().splitlines()[-1])
+    assert damaged["value"] == 1.0 / 32.0 and damaged["misses"] == 1 and damaged["hits"] == 0
+    assert "could not be read" in err and "compiling it afresh" in err
+    again = _result(_start(tmp_path))
+    assert again["value"] == 1.0 / 32.0 and again["hits"] == 1 and again["misses"] == 0
 
 
 def _stamp_module(root: Path):
