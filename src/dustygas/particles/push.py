@@ -294,7 +294,7 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
             rcol = RESPONSE + 3 * s
             # the gathered u0 (3), A (3), R (3): scalars, which stay in registers (sums into an
             # array are stores the compiler cannot drop); the usual stencils with their reach
-            # known to the compiler, which then unrolls the loops (-20 % of the kick)
+            # known to the compiler, which then unrolls the loops (linA: -16 % of the kick)
             base = ((k + tz) * nyt + j + ty) * nxt + i + tx
             if tsc_xz:
                 u0x, u0y, u0z, ax_, ay_, az_, rx_, ry_, rz_ = gather_drag(flat, wts, p, R, base, nyt, nxt, rcol,
