@@ -19,15 +19,20 @@ from dustygas.reproduce.checks import compare, not_judged
 from dustygas.reproduce.gallery import make_figures, read_manifests
 
 
-@pytest.fixture
-def failing_figure():
-    """A registered figure whose check fails (a straight line whose slope is not the claimed 2)."""
+def line_figure(slope: float, stem: str):
+    """A figure function that draws ``y = slope x`` into ``stem.png``, with its CSV."""
     def line(output: Path, quick: bool = True):
         fig, ax = new_figure()
         x = np.linspace(0, 1, 11)
-        ax.plot(x, 3 * x)
-        return save_figure(fig, output / "test_line.png", [Column("x", x, "1"), Column("y", 3 * x, "1")])
+        ax.plot(x, slope * x)
+        return save_figure(fig, output / f"{stem}.png", [Column("x", x, "1"), Column("y", slope * x, "1")])
 
+    return line
+
+
+@pytest.fixture
+def failing_figure():
+    """A registered figure whose check fails (a straight line whose slope is not the claimed 2)."""
     def checks(output: Path):
         from dustygas.plot import read_table
 
@@ -35,7 +40,7 @@ def failing_figure():
         return [compare("slope", np.polyfit(d["x"], d["y"], 1)[0], 2.0, rtol=1e-6, reference="a claim")]
 
     registry.figure("test-line", "a line with slope 3", caption="A test figure <b>caption</b> & more.",
-                    checks=checks)(line)
+                    checks=checks)(line_figure(3.0, "test_line"))
     yield "test-line"
     registry._FIGURES.pop("test-line")
 
@@ -77,16 +82,10 @@ def test_a_check_not_judged_is_neither_passed_nor_failed(tmp_path, capsys):
     NOT JUDGED with the reason, and the page counts it apart ("1 of 2 checks passed, 1 not judged")."""
     from dustygas.cli import main
 
-    def line(output: Path, quick: bool = True):
-        fig, ax = new_figure()
-        x = np.linspace(0, 1, 11)
-        ax.plot(x, 2 * x)
-        return save_figure(fig, output / "test_line2.png", [Column("x", x, "1"), Column("y", 2 * x, "1")])
-
     def checks(output: Path):
         return [compare("slope", 2.0, 2.0, rtol=1e-6), not_judged("steady", 1.5, "too short a run")]
 
-    registry.figure("test-open", "a line", checks=checks)(line)
+    registry.figure("test-open", "a line", checks=checks)(line_figure(2.0, "test_line2"))
     try:
         status = main(["reproduce", "test-open", "-o", str(tmp_path)])
     finally:
