@@ -68,11 +68,11 @@ def main(args: argparse.Namespace) -> int:
         if record.error:
             print(f"{record.name}: FAILED: {record.error}", file=sys.stderr)
         for c in record.checks:
-            exp = c["expected"] if isinstance(c["expected"], str) else f"{c['expected']:.6g}"
             if verdict(c) == "NOT JUDGED":
                 print(f"  NOT JUDGED {c['name']}: {c['value']:.6g} ({c['tolerance']})", file=sys.stderr)
-            else:
-                print(f"  {verdict(c)} {c['name']}: {c['value']:.6g} vs {exp} ({c['tolerance']})", file=sys.stderr)
+                continue
+            exp = c["expected"] if isinstance(c["expected"], str) else f"{c['expected']:.6g}"
+            print(f"  {verdict(c)} {c['name']}: {c['value']:.6g} vs {exp} ({c['tolerance']})", file=sys.stderr)
 
     extra = {"runs": list(runs), "run": Path(runs[0])} if runs else {}
     records = make_figures([s.name for s in specs], out, quick=not args.full, log=log, **extra)

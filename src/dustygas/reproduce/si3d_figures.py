@@ -30,8 +30,9 @@ SLAB = 0.03  # H: the slab half-width of thesis Figs 4.7-4.9
 
 
 #: the quick default: the si3d preset at half its resolution and to 10 of its 30 orbits (18 179
-#: steps, 62 s on the quiet 2-core machine with two threads, 2026-12-04; to 15 orbits its layer
-#: puffs up in the last five and the steady-H_p check fails: 2.3)
+#: steps, 62 s on the quiet 2-core machine with two threads, 2026-12-04). Too short for Fig 1.13's
+#: steady-layer check, which it reports as not judged (si3d_checks.SATURATED_AFTER); the layer
+#: still thickens at this resolution (to 15 orbits: second half / first half of H_p 2.3)
 QUICK = ("grid.nx=16", "grid.ny=16", "grid.nz=24", "run.tlim=62.83185307179586")
 
 
