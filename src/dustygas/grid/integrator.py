@@ -133,8 +133,9 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     fluxes of the boundary faces, stored by the z sweep in ``zflux``, ``(2, 4, ny, nx)``), each
     weighted with the stage's share of the step. ``oa_rate`` is ``q Omega`` under orbital advection
     (0: off). ``nthreads`` is the number of chunks the pencils are split into (results do not
-    depend on it; numba cannot cache a function that asks for it itself): with a z axis, slabs of
-    z planes, each running every sweep of the stage in its planes (the z pencils in segments).
+    depend on it; numba cannot cache a function that asks for it itself): in 3D, slabs of z
+    planes, each running every sweep of the stage in its planes (the z pencils in segments); in
+    2D, one parallel region per sweep, each splitting its pencils.
 
     Returns
     -------
@@ -153,8 +154,11 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
     # z slabs: with a z axis and a first sweep along x or y, each thread runs every sweep of its
     # slab of z planes (the z pencils in segments): one parallel region per stage, and the cells a
-    # thread writes are the same in every sweep (and in the particle kernels, which split rows too)
-    nslab = min(nz, nthreads) if nz > 1 and first_axis != 2 else 1
+    # thread writes are the same in every sweep (and in the particle kernels, which split rows too).
+    # Not in a 2D x-z box: there two threads writing the z segments of one 64^2 state gained 1.52x
+    # (the same segments written into two separate arrays 1.87x; whole z pencils split by columns
+    # 1.8x), which cost the linA stage 12 % of its two-thread time (2026-12-05)
+    nslab = min(nz, nthreads) if nz > 1 and ny > 1 and first_axis != 2 else 1
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * nslab
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
     rates = np.zeros(nrate)
