@@ -157,7 +157,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     # thread writes are the same in every sweep (and in the particle kernels, which split rows too).
     # Not in a 2D x-z box: there two threads writing the z segments of one 64^2 state gained 1.52x
     # (the same segments written into two separate arrays 1.87x; whole z pencils split by columns
-    # 1.8x), which cost the linA stage 12 % of its two-thread time (2026-12-05)
+    # 1.8x), which cost the linA corrector stage 12 % of its two-thread time (2026-12-05)
     nslab = min(nz, nthreads) if nz > 1 and ny > 1 and first_axis != 2 else 1
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * nslab
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
