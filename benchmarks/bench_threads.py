@@ -10,7 +10,7 @@ excluded: one short untimed run compiles first). Cases:
                 on one thread; until 2026-12-05 300 steps, 1.0 s, of which about 0.08 s are the
                 run's fixed cost -- the snapshot, checkpoint and history written at its end, the
                 same on any thread count -- which held the two-thread ratio of a run at 1.73
-                where its steps gained 1.93);
+                where its steps gained 1.91-1.95);
 * ``sph``       a 3D SPH box, ``sph-soundwave-3d`` with 32 x 32 x 32 layers, 200 steps (about a
                 minute on one thread; ``run.tlim`` raised so that the steps, not t = 1, end the run:
                 the 40 steps used until 2026-12-03, 6-12 s, gave two-thread ratios of 1.29 and

@@ -147,10 +147,13 @@ def test_coupled_3d_shearing_box_does_not_depend_on_the_thread_count(tmp_path):
     assert_identical(results_at_threads("particles.test_kernels:thread_case", tmp_path, problem="si3d", sets=sets))
 
 
-def test_coupled_2d_xz_box_does_not_depend_on_the_thread_count(tmp_path):
-    """The same in a 2D x-z box (si-linA, 16², CTU gas step): its grid-scale filter runs out of
-    place over pieces of the rows and its deposits over chunks of rows, both as many as threads."""
-    sets = ["grid.nx=16", "grid.nz=16", "scheme.integrator=ctu", "scheme.cfl=0.8"]
+@pytest.mark.parametrize(("integrator", "cfl"), [("ctu", 0.8), ("vl2", 0.4)])
+def test_coupled_2d_xz_box_does_not_depend_on_the_thread_count(tmp_path, integrator, cfl):
+    """The same in a 2D x-z box (si-linA, 16², CTU and VL2 gas steps): its grid-scale filter runs
+    out of place over pieces of the rows and its deposits over chunks of rows, both as many as
+    threads; the VL2 stage sweeps each axis in a parallel region of its own, its pencils split in
+    as many chunks as threads."""
+    sets = ["grid.nx=16", "grid.nz=16", f"scheme.integrator={integrator}", f"scheme.cfl={cfl}"]
     assert_identical(results_at_threads("particles.test_kernels:thread_case", tmp_path, problem="si-linA", sets=sets))
 
 
