@@ -4,9 +4,11 @@ Builds a particle problem (default ``si-linA`` with the CTU gas step at Courant 
 ``--warmup`` steps, then times ``--steps`` steps with every compiled kernel that the coupled
 engine and the gas engine call wrapped in a timer (``time.process_time``: CPU time, robust on a
 loaded machine at one thread; a call of it costs ~2 µs here, which the figures of the kernels
-include). Prints µs per step for each kernel (CPU, and wall by ``time.perf_counter``), their
-sum, and the difference to the whole step: the Python glue between the compiled calls
-(dispatch of the arguments, attribute look-ups, numpy operations on small arrays).
+include, and so does numba's dispatch of the call). Prints µs per step for each kernel (CPU, and
+wall by ``time.perf_counter``), their sum, and the difference to the whole step: the Python glue
+between the compiled calls (attribute look-ups, numpy operations on small arrays) plus most of
+the timers' own cost -- on the linA step 55-75 µs, of which the glue alone is 11 µs (2026-12-05:
+the step replayed with stub kernels, ``benchmarks/RESULTS.md``).
 
 Run it on one thread (``NUMBA_NUM_THREADS=1``) for the serial-share figure of issue 16: at one
 thread the CPU time of a step splits into the kernels' parallel loops, their serial parts and
