@@ -152,13 +152,13 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     # the Courant rate of the new state: per pencil of the step's last sweep (or per column of
     # the orbital-advection remap), plus the radial edge cells after their flux correction
     first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
-    # z slabs: with a z axis and a first sweep along x or y, each thread runs every sweep of its
-    # slab of z planes (the z pencils in segments): one parallel region per stage, and the cells a
-    # thread writes are the same in every sweep (and in the particle kernels, which split rows too).
-    # Not in a 2D x-z box: there two threads writing the z segments of one 64^2 state gained 1.52x
-    # (the same segments written into two separate arrays 1.87x; whole z pencils split by columns
-    # 1.8x), which cost the linA corrector stage 12 % of its two-thread time (2026-12-05)
-    nslab = min(nz, nthreads) if nz > 1 and ny > 1 and first_axis != 2 else 1
+    # z slabs in 3D: each thread runs every sweep of its slab of z planes (the z pencils in
+    # segments): one parallel region per stage, and the cells a thread writes are the same in every
+    # sweep (and in the particle kernels, which split rows too). Not in 2D, where a z plane is one
+    # row: in a 64^2 x-z box two threads writing the z segments of one state gained 1.52-1.59x (the
+    # same segments written into two separate arrays 1.86-1.88x; whole z pencils split by columns
+    # 1.76-1.81x), which cost the linA corrector stage 12 % of its two-thread time (2026-12-05)
+    nslab = min(nz, nthreads) if nx > 1 and ny > 1 and nz > 1 else 1
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * nslab
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
     rates = np.zeros(nrate)
