@@ -159,20 +159,86 @@ def test_coupled_2d_xz_box_does_not_depend_on_the_thread_count(tmp_path, integra
 
 @pytest.mark.parametrize("npiece", [1, 2, 3, 7])
 @pytest.mark.parametrize("rows", [(0, 40), (5, 31), (11, 17)])
-def test_xz_filter_equals_the_generic_filter_for_any_split(npiece, rows):
-    """The 2D x-z filter of the coupled step (rows split among ``npiece`` pieces, each filtering
-    two rows beyond its ends along x again) leaves in ``out`` exactly what the generic in-place
-    filter leaves in the field, bit for bit, for a full and for partial row windows; rows outside
-    the window are copied unchanged."""
+@pytest.mark.parametrize("kinds", [(0, 0, 0), (2, 0, 2), (1, 0, 0, 3), (0, 0, 3, 2)],
+                         ids=["periodic", "mirror", "shear-x-neighbour-top", "neighbour-bottom-mirror-top"])
+def test_xz_filter_equals_the_ghost_fill_and_the_generic_filter_for_any_split(npiece, rows, kinds):
+    """The 2D x-z filter of the coupled step fills the field's ghosts itself (each piece its own
+    rows, a neighbour's rows from a private copy) and filters out of place: ``out`` holds bit for
+    bit what the generic ghost fill followed by the generic in-place filter leave in the field,
+    for any split of the rows, for full and partial row windows and every ghost rule (periodic,
+    mirror, a face a neighbouring block fills), and the field keeps its domain cells and gets the
+    generic ghosts. Outside the window only the domain columns are compared: the generic fill
+    copies whole z ghost rows there, stale x ghosts included, which nothing reads."""
+    from dustygas.grid.field_ghosts import fill_field_ghosts
     from dustygas.particles.deposit import filter_field, filter_field_xz
 
     rng = np.random.default_rng(7)
+    gx = gz = 4
     f = rng.random((40, 1, 36, 9))
     k_lo, k_hi = rows
+    kinds = np.array(kinds, dtype=np.int64)
     reference = f.copy()
+    fill_field_ghosts(reference, gx, 0, gz, kinds, 0.0, 0, 0, k_lo, k_hi)
+    filled = reference.copy()
     filter_field(reference, np.array([True, False, True]), k_lo, k_hi)
     out = np.full_like(f, np.nan)
-    kept = f.copy()
-    filter_field_xz(f, out, k_lo, k_hi, npiece)
-    assert np.array_equal(out, reference)
-    assert np.array_equal(f, kept)
+    filter_field_xz(f, out, k_lo, k_hi, npiece, gx, gz, kinds)
+    window = slice(k_lo, k_hi)
+    assert np.array_equal(out[window], reference[window])
+    assert np.array_equal(out[:, :, gx:-gx], reference[:, :, gx:-gx])
+    assert np.array_equal(f[window], filled[window])
+    assert np.array_equal(f[:, :, gx:-gx], filled[:, :, gx:-gx])
+
+
+@pytest.mark.parametrize(("problem", "sets"), [
+    ("si-linA", ["grid.nx=16", "grid.nz=16"]),
+    ("si3d", ["grid.nx=8", "grid.ny=8", "grid.nz=16", "problem.gas_boundary_z=outflow"]),
+    ("si3d", ["grid.nx=8", "grid.ny=1", "grid.nz=16", "problem.gas_boundary_z=reflecting"]),
+])
+def test_image_records_do_not_depend_on_the_chunks_and_count_every_image(problem, sets):
+    """The image records are built per axis in chunks written in parallel, each from the record
+    its count says: for 1, 2, 3 and 7 chunks, and after a first call into arrays too short (the
+    caller's protocol: grow to the returned number, call again), the records are the same bit for
+    bit. Without shear their number is the analytic one: a particle within the reach of ``a_d``
+    faces along axis d has ``prod_d (1 + a_d) - 1`` images (images of images at edges and
+    corners); in the shearing box the radial images slide along y, and with them the y faces
+    they are near, so there the count is only compared across the chunkings."""
+    from dustygas.particles.boundaries import build_images
+    from dustygas.problems import get_problem
+
+    prob = get_problem(problem)
+    eng = prob.build(prob.config(overrides=sets))
+    eng.advance(eng.timestep())
+    eng._prepare(eng.t)
+    p = eng.particles
+    n = p.n
+    pos, vel, species, pid, mass = p.buffers()
+    args = (n, eng._lay, eng._sp, eng._pb, eng._reach, eng._order, eng.geometry.shear_offset(eng.t), eng._keys,
+            eng._wts, pos, eng._cell_start)
+    W = eng._wts.shape[2]
+
+    def records(cap, nthreads):
+        arrays = (np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64), np.zeros((cap, 3, W)),
+                  np.zeros(cap))
+        m = build_images(*args, *arrays, nthreads)
+        return m, tuple(a[:m] for a in arrays) if m <= cap else None
+
+    m, reference = records(8 * n, 1)
+    keys = eng._keys[:n]
+    cells = np.stack([keys % eng.mesh.shape[0], (keys // eng.mesh.shape[0]) % eng.mesh.shape[1],
+                      keys // (eng.mesh.shape[0] * eng.mesh.shape[1])])
+    expected = np.ones(n, dtype=np.int64)
+    for axis, (size, reach) in enumerate(zip(eng.mesh.shape, eng._reach)):
+        if size > 1 and reach > 0:
+            expected *= 1 + (cells[axis] < reach) + (cells[axis] >= size - reach)
+    if eng.geometry.shear_periodic:
+        assert m > 0
+    else:
+        assert m == int(np.sum(expected - 1)) > 0
+    for nthreads in (2, 3, 7):
+        m_short, _ = records(m // 3, nthreads)
+        assert m_short > m // 3
+        m_again, again = records(max(m_short, m), nthreads)
+        assert m_again == m
+        for a, b in zip(again, reference):
+            assert np.array_equal(a, b)

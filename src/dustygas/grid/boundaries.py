@@ -59,8 +59,7 @@ from .shearing_box import shear_offset
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "NEIGHBOUR", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
-    "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY", "FIELD_PERIODIC", "FIELD_SHEAR",
-    "FIELD_MIRROR", "FIELD_NEIGHBOUR", "field_ghost_kinds", "fill_field_ghosts",
+    "correct_radial_fluxes", "fill_ghosts_threaded", "fill_ghost_rows_xz", "PARALLEL_REMAP_NY",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
@@ -73,8 +72,6 @@ BOUNDARY_KINDS = {"periodic": PERIODIC, "shear-periodic": SHEAR_PERIODIC, "outfl
 #: 2D x-y boxes with at least this many cells along y remap their radial ghosts and fluxes in
 #: parallel (measured: ~3.5 ns per remapped value, ~2 us per parallel region)
 PARALLEL_REMAP_NY = 100
-#: the x ghosts of a cell field (:func:`fill_field_ghosts`) are filled in parallel from this many values on
-FIELD_PARALLEL_VALUES = 16384
 
 
 class Boundaries(NamedTuple):
@@ -347,6 +344,50 @@ def correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, i0, i1, plane_flux) -> 
             plane_flux[k] = plane
 
 
+@njit(cache=True, error_model="numpy")
+def fill_ghost_rows_xz(u, k0, k1, t, lay, sp, bc) -> None:
+    """The ghosts of the padded z rows ``k0 .. k1-1`` of a 2D x-z state (``ny = 1``), each row
+    as :func:`fill_ghosts` leaves it: a z ghost row first takes the domain cells of the row it
+    copies (or continues hydrostatically), then every row its x ghosts from its own domain
+    cells. A row reads only domain cells of other rows, which no ghost fill writes, so
+    different threads can fill different rows at once: each chunk of the integrator's x sweep
+    fills the rows it sweeps (:func:`~dustygas.grid.integrator.advance_gas`).
+
+    The corner cells come out as in :func:`fill_ghosts`, where the z fill copies whole rows and
+    the x fill then overwrites their ghost ends.
+    """
+    nx, nz, gx, gz = lay.nx, lay.nz, lay.gx, lay.gz
+    hydrostatic = bc.z_lo == HYDROSTATIC or bc.z_hi == HYDROSTATIC
+    no_column = np.empty((2, 0))  # the remap's scratch of _shear_ghosts, unused without y
+    for k in range(k0, k1):
+        if k < gz or k >= gz + nz:
+            lower = k < gz
+            kind = bc.z_lo if lower else bc.z_hi
+            if kind != NEIGHBOUR:
+                m = gz - 1 - k if lower else k - gz - nz
+                if hydrostatic:
+                    src = gz if lower else gz + nz - 1
+                    z_src = bc.z_origin + (bc.z_first + src - gz + 0.5) * sp.dz
+                    z_dst = bc.z_origin + (bc.z_first + k - gz + 0.5) * sp.dz
+                    factor = math.exp(-(z_dst * z_dst - z_src * z_src) * bc.half_inv_h2)
+                    for v in range(4):
+                        for i in range(gx, gx + nx):
+                            u[v, k, 0, i] = factor * u[v, src, 0, i]
+                else:
+                    src = _source_index(kind, lower, m, nz, gz)
+                    for v in range(4):
+                        sign = -1.0 if (kind == REFLECTING and v == 3) else 1.0
+                        for i in range(gx, gx + nx):
+                            u[v, k, 0, i] = sign * u[v, src, 0, i]
+        if gx == 0:
+            continue
+        if bc.x_lo != SHEAR_PERIODIC:
+            _copy_ghosts(u, 0, nx, gx, bc.x_lo, bc.x_hi, k, k + 1)
+        else:  # the velocity jump only (no y to shift along): items (side, row)
+            for side in range(2):
+                _shear_ghosts(u, 2 * k + side, t, lay, sp, bc, no_column[0], no_column, no_column[1])
+
+
 @njit(inline="always")
 def fill_ghosts_threaded(u, t, lay, sp, bc, nthreads) -> None:
     """:func:`fill_ghosts` with the items of each axis spread over ``nthreads`` chunks where it
@@ -391,109 +432,3 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> np.ndarra
     else:
         correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, 0, nitems, plane_flux)
     return plane_flux
-
-
-# --------------------------------------------------------------------------- fields
-#: ghost rules for cell fields other than the gas state (the fields the particles gather and
-#: deposit): a copy one box length away, the shear-periodic copy shifted along y, or a mirror
-#: image (every non-periodic kind: it keeps the sum of a field under the symmetric grid-scale
-#: filter and folds a deposit back into the domain)
-FIELD_PERIODIC, FIELD_SHEAR, FIELD_MIRROR = 0, 1, 2
-#: a z face of a field whose ghosts another block provides (:mod:`dustygas.parallel`)
-FIELD_NEIGHBOUR = 3
-
-
-def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, bool]) -> np.ndarray:
-    """Field ghost rule of each axis from the gas boundary kind names (inactive axes: periodic).
-
-    >>> field_ghost_kinds(("shear-periodic", "periodic", "hydrostatic"), (True, True, True)).tolist()
-    [1, 0, 2]
-    """
-    out = []
-    for name, on in zip(kinds, active):
-        if not on or name == "periodic":
-            out.append(FIELD_PERIODIC)
-        elif name == "shear-periodic":
-            out.append(FIELD_SHEAR)
-        else:
-            out.append(FIELD_MIRROR)
-    return np.array(out, dtype=np.int64)
-
-
-@njit(cache=True, error_model="numpy")
-def _field_ghost_pair(kind, m, n, g):
-    """Indices of the ``m``-th lower and upper ghost layers of a field and of the layers they copy
-    (a mirror image like a reflecting wall, else periodic)."""
-    src_kind = REFLECTING if kind == FIELD_MIRROR else PERIODIC
-    return (g - 1 - m, g + n + m, _source_index(src_kind, True, m, n, g), _source_index(src_kind, False, m, n, g))
-
-
-@njit(cache=True, parallel=True, error_model="numpy")
-def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, k_lo, k_hi) -> None:
-    """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
-
-    ``kinds``: :data:`FIELD_PERIODIC`, :data:`FIELD_SHEAR` (x only) or :data:`FIELD_MIRROR` per
-    axis; a fourth entry, if given, is the kind of the upper z face (then ``kinds[2]`` that of
-    the lower one), and a z face of kind :data:`FIELD_NEIGHBOUR` is left alone (a block's
-    neighbour fills it). A shear-periodic ghost column is the periodic column shifted conservatively by
-    ``+shift`` cells along y on the inner side and ``-shift`` on the outer (the convention of
-    the gas ghosts above; ``shift`` = shear offset / dy), without a velocity jump: fields that
-    hold the azimuthal gas velocity store it relative to the background shear. Axes z, y, x in
-    this order, each over the full extent of the others (edges and corners). The y and x
-    ghosts are filled only in the padded z rows ``k_lo .. k_hi-1`` (all: ``0, NZ``).
-    """
-    NZ, NY, NX, nvar = f.shape
-    nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
-    kz_lo = kinds[2]
-    kz_hi = kinds[3] if kinds.shape[0] > 3 else kinds[2]
-    for m in range(gz):
-        if kz_lo != FIELD_NEIGHBOUR:
-            lo, _, slo, _ = _field_ghost_pair(kz_lo, m, nz, gz)
-            f[lo] = f[slo]
-        if kz_hi != FIELD_NEIGHBOUR:
-            _, hi, _, shi = _field_ghost_pair(kz_hi, m, nz, gz)
-            f[hi] = f[shi]
-    for m in range(gy):
-        lo, hi, slo, shi = _field_ghost_pair(kinds[1], m, ny, gy)
-        for k in range(k_lo, k_hi):
-            f[k, lo] = f[k, slo]
-            f[k, hi] = f[k, shi]
-    if gx > 0:  # rows in parallel: a ghost column copies (or remaps) domain columns of its row only
-        shear = kinds[0] == FIELD_SHEAR and ny > 1
-        nk = k_hi - k_lo
-        if shear or nk * NY * nvar * gx >= FIELD_PARALLEL_VALUES:
-            nchunk = min(nk, 64)
-            for c in prange(nchunk):
-                _field_x_ghost_rows(f, gx, gy, kinds[0], shear, shift, remap_method, remap_limiter,
-                                    k_lo + c * nk // nchunk, k_lo + (c + 1) * nk // nchunk)
-        elif nk > 0:  # a few values per row (2D x-z): a parallel region would cost more than the copies
-            _field_x_ghost_rows(f, gx, gy, kinds[0], shear, shift, remap_method, remap_limiter, k_lo, k_hi)
-
-
-@njit(cache=True, error_model="numpy")
-def _field_x_ghost_rows(f, gx, gy, kind, shear, shift, remap_method, remap_limiter, k0, k1) -> None:
-    """The x ghosts of :func:`fill_field_ghosts` in the padded z rows ``k0 .. k1-1``."""
-    NZ, NY, NX, nvar = f.shape
-    ny, nx = NY - 2 * gy, NX - 2 * gx
-    col = np.empty(ny)
-    out = np.empty(ny)
-    work = np.empty(4 * ny + 19)
-    for k in range(k0, k1):
-        for m in range(gx):
-            lo, hi, slo, shi = _field_ghost_pair(kind, m, nx, gx)
-            if not shear:
-                for j in range(NY):
-                    for v in range(nvar):
-                        f[k, j, lo, v] = f[k, j, slo, v]
-                        f[k, j, hi, v] = f[k, j, shi, v]
-                continue
-            for side in range(2):
-                dst = lo if side == 0 else hi
-                src = slo if side == 0 else shi
-                s = shift if side == 0 else -shift
-                for v in range(nvar):
-                    for j in range(ny):
-                        col[j] = f[k, gy + j, src, v]
-                    shift_column(col, ny, s, remap_method, remap_limiter, out, work)
-                    for j in range(NY):
-                        f[k, j, dst, v] = out[(j - gy) % ny]

@@ -39,7 +39,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import SetupError, SimulationError
-from ..grid.boundaries import FIELD_NEIGHBOUR
+from ..grid.field_ghosts import FIELD_NEIGHBOUR
 from ..particles.boundaries import OUTFLOW, apply_boundaries
 from ..particles.coupling import ParticleGridEngine, add_lost
 from ..particles.interp import axis_cell

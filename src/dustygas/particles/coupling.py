@@ -60,7 +60,7 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError
-from ..grid.boundaries import fill_field_ghosts, field_ghost_kinds
+from ..grid.field_ghosts import fill_field_ghosts, field_ghost_kinds
 from ..grid.mesh import Spacing
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
@@ -410,10 +410,11 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             self._stop_nonfinite(bad)  # raises (a block of a decomposed run first tells the others)
             return
         shift = self.geometry.shear_offset(t)
+        nthreads = numba.get_num_threads()
         args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
                 self._cell_start)
         while True:
-            m = build_images(*args, self._img_src, self._img_cell, self._img_w, self._img_dvy)
+            m = build_images(*args, self._img_src, self._img_cell, self._img_w, self._img_dvy, nthreads)
             if m <= self._img_capacity:
                 break
             self._grow_images(m)
@@ -451,10 +452,10 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         shift = self.geometry.shear_offset(t) / self.geometry.dx[1] if self.geometry.shape[1] > 1 else 0.0
         k_lo, k_hi = self._padded_rows(rows, g[2])
         self._field_halo(field, g[2])
-        fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
-        if self._xz:
-            filter_field_xz(field, out, k_lo, k_hi, max(1, min(nthreads, 8)))
+        if self._xz:  # the ghosts inside the filter's parallel region
+            filter_field_xz(field, out, k_lo, k_hi, max(1, min(nthreads, 8)), g[0], g[2], self._field_kinds)
             return out
+        fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
         if self.smooth:
             filter_field(field, self._active, k_lo, k_hi)
         return field
