@@ -34,9 +34,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 #: compiled calls without a parallel region (``fill_field_ghosts`` fills a 2D x-y field serially; a
 #: 2D x-z field's ghosts are filled inside ``filter_field_xz``); ``ctu_stage`` and ``advance_gas``
-#: hold serial parts too (2D ghost fills of CTU, the radial flux correction, the sums), and
-#: ``build_images`` its per-axis counts, counted with the parallel kernels here
-SERIAL = ("sort_images", "image_values", "fill_field_ghosts", "step_coefficients", "compact")
+#: hold serial parts too (2D ghost fills of CTU, the radial flux correction, the sums), counted
+#: with the parallel kernels here
+SERIAL = ("build_images", "sort_images", "image_values", "fill_field_ghosts", "step_coefficients", "compact")
 
 
 def wrap_module(module, names, totals, walls, counts):

@@ -59,7 +59,7 @@ from .shearing_box import shear_offset
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "NEIGHBOUR", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
     "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
-    "correct_radial_fluxes", "fill_ghosts_threaded", "fill_ghost_rows_xz", "PARALLEL_REMAP_NY",
+    "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
@@ -342,50 +342,6 @@ def correct_radial_items(u, bflux, dtdx, t, lay, sp, bc, i0, i1, plane_flux) -> 
             plane += new_in
         if v == 0:
             plane_flux[k] = plane
-
-
-@njit(cache=True, error_model="numpy")
-def fill_ghost_rows_xz(u, k0, k1, t, lay, sp, bc) -> None:
-    """The ghosts of the padded z rows ``k0 .. k1-1`` of a 2D x-z state (``ny = 1``), each row
-    as :func:`fill_ghosts` leaves it: a z ghost row first takes the domain cells of the row it
-    copies (or continues hydrostatically), then every row its x ghosts from its own domain
-    cells. A row reads only domain cells of other rows, which no ghost fill writes, so
-    different threads can fill different rows at once: each chunk of the integrator's x sweep
-    fills the rows it sweeps (:func:`~dustygas.grid.integrator.advance_gas`).
-
-    The corner cells come out as in :func:`fill_ghosts`, where the z fill copies whole rows and
-    the x fill then overwrites their ghost ends.
-    """
-    nx, nz, gx, gz = lay.nx, lay.nz, lay.gx, lay.gz
-    hydrostatic = bc.z_lo == HYDROSTATIC or bc.z_hi == HYDROSTATIC
-    no_column = np.empty((2, 0))  # the remap's scratch of _shear_ghosts, unused without y
-    for k in range(k0, k1):
-        if k < gz or k >= gz + nz:
-            lower = k < gz
-            kind = bc.z_lo if lower else bc.z_hi
-            if kind != NEIGHBOUR:
-                m = gz - 1 - k if lower else k - gz - nz
-                if hydrostatic:
-                    src = gz if lower else gz + nz - 1
-                    z_src = bc.z_origin + (bc.z_first + src - gz + 0.5) * sp.dz
-                    z_dst = bc.z_origin + (bc.z_first + k - gz + 0.5) * sp.dz
-                    factor = math.exp(-(z_dst * z_dst - z_src * z_src) * bc.half_inv_h2)
-                    for v in range(4):
-                        for i in range(gx, gx + nx):
-                            u[v, k, 0, i] = factor * u[v, src, 0, i]
-                else:
-                    src = _source_index(kind, lower, m, nz, gz)
-                    for v in range(4):
-                        sign = -1.0 if (kind == REFLECTING and v == 3) else 1.0
-                        for i in range(gx, gx + nx):
-                            u[v, k, 0, i] = sign * u[v, src, 0, i]
-        if gx == 0:
-            continue
-        if bc.x_lo != SHEAR_PERIODIC:
-            _copy_ghosts(u, 0, nx, gx, bc.x_lo, bc.x_hi, k, k + 1)
-        else:  # the velocity jump only (no y to shift along): items (side, row)
-            for side in range(2):
-                _shear_ghosts(u, 2 * k + side, t, lay, sp, bc, no_column[0], no_column, no_column[1])
 
 
 @njit(inline="always")

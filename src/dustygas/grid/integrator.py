@@ -50,7 +50,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, fill_ghost_rows_xz, fill_ghosts_threaded
+from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
 from .budget import budget_offsets
 from .diagnostics import cell_rate, combine_rates, fold_rate
 from .orbital_advection import remap_columns
@@ -124,9 +124,8 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     """Stages ``s_lo .. s_hi-1`` of the step from ``t`` to ``t + dt``, then (if ``finish``)
     orbital advection and the Courant rate of the new state.
 
-    Each stage: ghost fill of its input at the stage time (in a 2D x-z box by the x sweep's
-    chunks, each the rows it sweeps: :func:`~dustygas.grid.boundaries.fill_ghost_rows_xz`); one
-    parallel sweep per active axis (the first adds the sources and ``ext`` if ``use_ext``); the shear-periodic flux
+    Each stage: ghost fill of its input at the stage time; one parallel sweep per active
+    axis (the first adds the sources and ``ext`` if ``use_ext``); the shear-periodic flux
     correction; the budget. ``budget`` is the flat array of :mod:`dustygas.grid.budget`: per z
     plane the mass through the radial boundary, per row ``(k, j)`` the y-momentum given by the
     rotating-frame source terms (summed along the first sweep's pencil), per face cell the mass
@@ -160,10 +159,6 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     # same segments written into two separate arrays 1.86-1.88x; whole z pencils split by columns
     # 1.76-1.81x), which cost the linA corrector stage 12 % of its two-thread time (2026-12-05)
     nslab = min(nz, nthreads) if nx > 1 and ny > 1 and nz > 1 else 1
-    # a 2D x-z box fills the ghosts of its input inside the x sweep's parallel region, each chunk
-    # the rows its x pencils sweep (in a region of their own the copies cost less than the region;
-    # serially, 5.6 us per linA stage, 8 % of the predictor's two-thread time: 2026-12-05)
-    rows_fill = nx > 1 and ny == 1 and nz > 1
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * nslab
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
     rates = np.zeros(nrate)
@@ -179,10 +174,8 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         weight = reals[s, 4]
         method = scheme[0] if ints[s, 3] < 0 else ints[s, 3]
         sch = (method, scheme[1], scheme[2], scheme[3])
-        # 1. ghost zones of the input state (in parallel where there is enough work; in a 2D x-z
-        #    box inside the x sweep, each chunk filling the rows it sweeps)
-        if not rows_fill:
-            fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
+        # 1. ghost zones of the input state (in parallel where there is enough work)
+        fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
         # 2. one sweep per active axis; the first one writes base, sources and ext
         y_source = np.zeros(pencil_count(first_axis, lay))
         last_stage = finish and s == s_hi - 1 and not remap
@@ -219,12 +212,9 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
                 faces = zflux if axis == 2 else bflux
                 want_rate = last_stage and axis == last_axis
                 for c in prange(nchunk):
-                    p0, p1 = c * npen // nchunk, (c + 1) * npen // nchunk
-                    if rows_fill and axis == 0:  # x pencil p is the padded row gz + p; the ends take the ghost rows
-                        fill_ghost_rows_xz(src, 0 if c == 0 else lay.gz + p0,
-                                           lay.gz + p1 if c < nchunk - 1 else nz + 2 * lay.gz, t_stage, lay, sp, bc)
                     sweep_pencils(src, dst, base, axis, first, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext,
-                                  faces, store, y_source, rates, bads, want_rate, shearing, p0, p1, 0, n_axis, 0, 1)
+                                  faces, store, y_source, rates, bads, want_rate, shearing,
+                                  c * npen // nchunk, (c + 1) * npen // nchunk, 0, n_axis, 0, 1)
                 first = False
         # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
         #    step's net update, like the VL2 predictor: conservation needs only the others)

@@ -201,86 +201,42 @@ def _add_image(m, src, i, j, k, w_src, dvy, flip, img_src, img_cell, img_w, img_
 
 
 @njit(cache=True, error_model="numpy")
-def _image_items(axis, lay, reach, m_prev):
-    """The work items of the images along ``axis``: the domain cells of the slabs within ``R`` of
-    either face (``nslab`` slabs of ``other`` cells), then the ``m_prev`` earlier records.
-    Returns ``(items, nslab, other)``; no items if the axis is inactive or has no reach."""
+def _images_along(axis, m0, m1, n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,
+                  img_src, img_cell, img_w, img_dvy) -> int:
+    """Images across the two faces of ``axis`` of the reals and of the records ``m0 .. m1-1``;
+    written from ``m1`` on while they fit. Returns the new number of records (more than the
+    arrays hold: not all were written)."""
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     nn = nx if axis == 0 else (ny if axis == 1 else nz)
     R = reach[axis]
-    if nn == 1 or R == 0:
-        return 0, 0, 0
-    nslab = 2 * R if 2 * R <= nn else nn
-    other = (ny * nz) if axis == 0 else ((nx * nz) if axis == 1 else (nx * ny))
-    return nslab * other + m_prev, nslab, other
-
-
-@njit(cache=True, error_model="numpy")
-def _item_cell(axis, t, nslab, other, nn, R, lay) -> int:
-    """Domain cell (flat index) of item ``t < nslab * other``: slab ``t // other``, cell ``t % other`` of it."""
-    nx, ny = lay.nx, lay.ny
-    sl = t // other
-    q = t % other
-    s_idx = sl if sl < R else nn - 2 * R + sl
-    if axis == 0:
-        return (q // ny * ny + q % ny) * nx + s_idx
-    if axis == 1:
-        return ((q // nx) * ny + s_idx) * nx + q % nx
-    return (s_idx * ny + q // nx) * nx + q % nx
-
-
-@njit(cache=True, error_model="numpy")
-def _image_sides(axis, c_ax, nn, R, pb) -> int:
-    """How many images a particle (or record) in cell ``c_ax`` along ``axis`` has: one per face
-    within ``R`` cells that does not border another block."""
-    count = 0
-    for side in range(2):
-        near = c_ax < R if side == 0 else c_ax >= nn - R
-        if near and not (pb.neighbours >> (2 * axis + side)) & 1:
-            count += 1
-    return count
-
-
-@njit(cache=True, error_model="numpy")
-def _count_images(axis, t0, t1, nslab, other, lay, pb, reach, cell_start, img_cell) -> int:
-    """The number of records that items ``t0 .. t1-1`` along ``axis`` write (:func:`_images_along`)."""
-    nn = lay.nx if axis == 0 else (lay.ny if axis == 1 else lay.nz)
-    R = reach[axis]
-    count = 0
-    for t in range(t0, t1):
-        if t < nslab * other:
-            c = _item_cell(axis, t, nslab, other, nn, R, lay)
-            npart = cell_start[c + 1] - cell_start[c]
-            if npart > 0:
-                sl = t // other
-                count += npart * _image_sides(axis, sl if sl < R else nn - 2 * R + sl, nn, R, pb)
-        else:
-            count += _image_sides(axis, img_cell[t - nslab * other, axis], nn, R, pb)
-    return count
-
-
-@njit(cache=True, error_model="numpy")
-def _images_along(axis, t0, t1, m, nslab, other, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,
-                  img_src, img_cell, img_w, img_dvy) -> None:
-    """The image records of items ``t0 .. t1-1`` along ``axis`` (:func:`_image_items`), written
-    from record ``m`` on, across the two faces of ``axis``: of the real particles in the slabs,
-    then of the earlier records (records ``t - nslab other``)."""
-    nx, ny, nz = lay.nx, lay.ny, lay.nz
-    nn = nx if axis == 0 else (ny if axis == 1 else nz)
-    R = reach[axis]
+    cap = img_src.shape[0]
+    if nn == 1 or R == 0 or m1 > cap:
+        return m1
     kind = pb.x if axis == 0 else (pb.y if axis == 1 else pb.z)
     periodic = kind == PERIODIC or kind == SHEAR_PERIODIC
     shear = kind == SHEAR_PERIODIC and ny > 1  # the images slide along y
+    m = m1
     W = wts.shape[2]
     wtmp = np.empty((3, W))
     ybuf = np.empty(W)
-    for t in range(t0, t1):
+    # the real particles in the slabs within R of either face, then the earlier images
+    nslab = 2 * R if 2 * R <= nn else nn
+    other = (ny * nz) if axis == 0 else ((nx * nz) if axis == 1 else (nx * ny))
+    for t in range(nslab * other + (m1 - m0)):
         if t < nslab * other:
-            c = _item_cell(axis, t, nslab, other, nn, R, lay)
+            sl = t // other
+            q = t % other
+            s_idx = sl if sl < R else nn - 2 * R + sl
+            if axis == 0:
+                c = (q // ny * ny + q % ny) * nx + s_idx
+            elif axis == 1:
+                c = ((q // nx) * ny + s_idx) * nx + q % nx
+            else:
+                c = (s_idx * ny + q // nx) * nx + q % nx
             first, last = cell_start[c], cell_start[c + 1]
             is_real = True
         else:
-            first = t - nslab * other
+            first = m0 + t - nslab * other
             last = first + 1
             is_real = False
         for r in range(first, last):
@@ -318,54 +274,39 @@ def _images_along(axis, t0, t1, m, nslab, other, lay, sp, pb, reach, order, y_sh
                 else:
                     kk = new
                 dvy = dvy0
-                # a particle near the inner face has its image beyond the outer one: n = sgn,
-                # at y - n s_y with v_y - n q Omega Lx
-                sgn = 1.0 if side == 0 else -1.0
-                if kind == SHEAR_PERIODIC:
-                    dvy = dvy0 - sgn * pb.jump
-                if shear:
-                    y = pos[1, src] - sgn * y_shift
-                    sy = (y - sp.y0) / sp.dy - 0.5
-                    sy -= ny * math.floor((sy + 0.5) / ny)  # into [-1/2, ny - 1/2): a cell of the box
-                    jj = cell_weights(sy, order, reach[1], ybuf)
-                _add_image(m, src, ii, jj, kk, wtmp, dvy, flip, img_src, img_cell, img_w, img_dvy)
-                if shear:
-                    for s in range(W):
-                        img_w[m, 1, s] = ybuf[s]
+                if m < cap:
+                    # a particle near the inner face has its image beyond the outer one: n = sgn,
+                    # at y - n s_y with v_y - n q Omega Lx
+                    sgn = 1.0 if side == 0 else -1.0
+                    if kind == SHEAR_PERIODIC:
+                        dvy = dvy0 - sgn * pb.jump
+                    if shear:
+                        y = pos[1, src] - sgn * y_shift
+                        sy = (y - sp.y0) / sp.dy - 0.5
+                        sy -= ny * math.floor((sy + 0.5) / ny)  # into [-1/2, ny - 1/2): a cell of the box
+                        jj = cell_weights(sy, order, reach[1], ybuf)
+                    _add_image(m, src, ii, jj, kk, wtmp, dvy, flip, img_src, img_cell, img_w, img_dvy)
+                    if shear:
+                        for s in range(W):
+                            img_w[m, 1, s] = ybuf[s]
                 m += 1
+    return m
 
 
-@njit(cache=True, parallel=True, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def build_images(n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start, img_src, img_cell, img_w,
-                 img_dvy, nthreads) -> int:
+                 img_dvy) -> int:
     """Image records of the sorted particles ``0 .. n-1`` (module docstring): along x, then y
     (of the particles and the x images), then z (of all). Returns their number; if it exceeds
     the length of the arrays, not all were written (nor counted): grow them and call again.
 
     ``reach[a]``: cells the stencil reaches along axis a (0 if inactive); ``keys`` the
     particles' domain cells; ``wts`` ``(N, 3, W)`` their weights; ``y_shift`` the shear
-    offset at the time of the positions. Each axis counts the records of ``nthreads`` chunks of
-    its items (a few loads per cell), then writes the chunks in parallel, each from its first
-    record: the records and their order do not depend on ``nthreads``.
+    offset at the time of the positions.
     """
-    cap = img_src.shape[0]
-    m = 0
-    for axis in range(3):
-        nitem, nslab, other = _image_items(axis, lay, reach, m)
-        if nitem == 0:
-            continue
-        if m > cap:
-            return m
-        nchunk = min(nitem, max(nthreads, 1))
-        starts = np.zeros(nchunk + 1, dtype=np.int64)
-        starts[0] = m
-        for c in range(nchunk):
-            starts[c + 1] = starts[c] + _count_images(axis, c * nitem // nchunk, (c + 1) * nitem // nchunk, nslab,
-                                                      other, lay, pb, reach, cell_start, img_cell)
-        if starts[nchunk] > cap:
-            return starts[nchunk]
-        for c in prange(nchunk):
-            _images_along(axis, c * nitem // nchunk, (c + 1) * nitem // nchunk, starts[c], nslab, other, lay, sp, pb,
-                          reach, order, y_shift, keys, wts, pos, cell_start, img_src, img_cell, img_w, img_dvy)
-        m = starts[nchunk]
-    return m
+    m = _images_along(0, 0, 0, n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,
+                      img_src, img_cell, img_w, img_dvy)
+    m = _images_along(1, 0, m, n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,
+                      img_src, img_cell, img_w, img_dvy)
+    return _images_along(2, 0, m, n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,
+                         img_src, img_cell, img_w, img_dvy)

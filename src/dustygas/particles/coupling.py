@@ -410,11 +410,10 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             self._stop_nonfinite(bad)  # raises (a block of a decomposed run first tells the others)
             return
         shift = self.geometry.shear_offset(t)
-        nthreads = numba.get_num_threads()
         args = (n, self._lay, self._sp, self._pb, self._reach, self._order, shift, self._keys, self._wts, pos,
                 self._cell_start)
         while True:
-            m = build_images(*args, self._img_src, self._img_cell, self._img_w, self._img_dvy, nthreads)
+            m = build_images(*args, self._img_src, self._img_cell, self._img_w, self._img_dvy)
             if m <= self._img_capacity:
                 break
             self._grow_images(m)

@@ -47,7 +47,7 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     while True:
         img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)
         img_w, img_dvy = np.zeros((cap, 3, 2 * R + 1)), np.zeros(cap)
-        m = build_images(*args, img_src, img_cell, img_w, img_dvy, numba.get_num_threads())
+        m = build_images(*args, img_src, img_cell, img_w, img_dvy)
         if m <= cap:
             break
         cap = 2 * m
