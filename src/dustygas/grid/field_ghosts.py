@@ -14,7 +14,7 @@ from numba import njit, prange
 from .boundaries import PERIODIC, REFLECTING, _source_index
 from .remap import shift_column
 
-__all__ = ["FIELD_PERIODIC", "FIELD_SHEAR", "FIELD_MIRROR", "FIELD_NEIGHBOUR", "field_ghost_kinds",
+__all__ = ["FIELD_PERIODIC", "FIELD_SHEAR", "FIELD_MIRROR", "FIELD_NEIGHBOUR", "field_ghost_kinds", "field_ghost_pair",
            "fill_field_ghosts"]
 
 #: the x ghosts of a cell field (:func:`fill_field_ghosts`) are filled in parallel from this many values on
@@ -43,7 +43,7 @@ def field_ghost_kinds(kinds: tuple[str, str, str], active: tuple[bool, bool, boo
 
 
 @njit(cache=True, error_model="numpy")
-def _field_ghost_pair(kind, m, n, g):
+def field_ghost_pair(kind, m, n, g):
     """Indices of the ``m``-th lower and upper ghost layers of a field and of the layers they copy
     (a mirror image like a reflecting wall, else periodic)."""
     src_kind = REFLECTING if kind == FIELD_MIRROR else PERIODIC
@@ -59,7 +59,7 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
     the lower one), and a z face of kind :data:`FIELD_NEIGHBOUR` is left alone (a block's
     neighbour fills it). A shear-periodic ghost column is the periodic column shifted conservatively by
     ``+shift`` cells along y on the inner side and ``-shift`` on the outer (the convention of
-    the gas ghosts above; ``shift`` = shear offset / dy), without a velocity jump: fields that
+    the gas ghosts, :mod:`dustygas.grid.boundaries`; ``shift`` = shear offset / dy), without a velocity jump: fields that
     hold the azimuthal gas velocity store it relative to the background shear. Axes z, y, x in
     this order, each over the full extent of the others (edges and corners). The y and x
     ghosts are filled only in the padded z rows ``k_lo .. k_hi-1`` (all: ``0, NZ``).
@@ -70,13 +70,13 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
     kz_hi = kinds[3] if kinds.shape[0] > 3 else kinds[2]
     for m in range(gz):
         if kz_lo != FIELD_NEIGHBOUR:
-            lo, _, slo, _ = _field_ghost_pair(kz_lo, m, nz, gz)
+            lo, _, slo, _ = field_ghost_pair(kz_lo, m, nz, gz)
             f[lo] = f[slo]
         if kz_hi != FIELD_NEIGHBOUR:
-            _, hi, _, shi = _field_ghost_pair(kz_hi, m, nz, gz)
+            _, hi, _, shi = field_ghost_pair(kz_hi, m, nz, gz)
             f[hi] = f[shi]
     for m in range(gy):
-        lo, hi, slo, shi = _field_ghost_pair(kinds[1], m, ny, gy)
+        lo, hi, slo, shi = field_ghost_pair(kinds[1], m, ny, gy)
         for k in range(k_lo, k_hi):
             f[k, lo] = f[k, slo]
             f[k, hi] = f[k, shi]
@@ -102,7 +102,7 @@ def _field_x_ghost_rows(f, gx, gy, kind, shear, shift, remap_method, remap_limit
     work = np.empty(4 * ny + 19)
     for k in range(k0, k1):
         for m in range(gx):
-            lo, hi, slo, shi = _field_ghost_pair(kind, m, nx, gx)
+            lo, hi, slo, shi = field_ghost_pair(kind, m, nx, gx)
             if not shear:
                 for j in range(NY):
                     for v in range(nvar):

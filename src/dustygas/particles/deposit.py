@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..grid.field_ghosts import FIELD_NEIGHBOUR, _field_ghost_pair
+from ..grid.field_ghosts import FIELD_NEIGHBOUR, field_ghost_pair
 
 __all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
 
@@ -324,7 +324,7 @@ def _row_x_ghosts(row, nv, nx, gx, kind) -> None:
     its domain cells (:func:`~dustygas.grid.field_ghosts.fill_field_ghosts`'s rule: a mirror image,
     else periodic: without y a shear-periodic field copies)."""
     for m in range(gx):
-        lo, hi, slo, shi = _field_ghost_pair(kind, m, nx, gx)
+        lo, hi, slo, shi = field_ghost_pair(kind, m, nx, gx)
         for v in range(nv):
             row[lo * nv + v] = row[slo * nv + v]
             row[hi * nv + v] = row[shi * nv + v]
@@ -341,7 +341,7 @@ def _z_source_row(k, nz, gz, kinds) -> int:
     if kind == FIELD_NEIGHBOUR:
         return k
     m = gz - 1 - k if lower else k - gz - nz
-    lo, hi, slo, shi = _field_ghost_pair(kind, m, nz, gz)
+    lo, hi, slo, shi = field_ghost_pair(kind, m, nz, gz)
     return slo if lower else shi
 
 
