@@ -15,7 +15,7 @@ from .boundaries import PERIODIC, REFLECTING, _source_index
 from .remap import shift_column
 
 __all__ = ["FIELD_PERIODIC", "FIELD_SHEAR", "FIELD_MIRROR", "FIELD_NEIGHBOUR", "field_ghost_kinds", "field_ghost_pair",
-           "fill_field_ghosts"]
+           "z_source_row", "row_x_ghosts", "fill_field_ghosts"]
 
 #: the x ghosts of a cell field (:func:`fill_field_ghosts`) are filled in parallel from this many values on
 FIELD_PARALLEL_VALUES = 16384
@@ -50,6 +50,34 @@ def field_ghost_pair(kind, m, n, g):
     return (g - 1 - m, g + n + m, _source_index(src_kind, True, m, n, g), _source_index(src_kind, False, m, n, g))
 
 
+@njit(cache=True, error_model="numpy")
+def z_source_row(k, nz, gz, kinds) -> int:
+    """The padded z row whose cells the padded z row ``k`` of a field copies: ``k`` itself in the
+    domain and beyond a face a neighbouring block fills (:data:`FIELD_NEIGHBOUR`), else the
+    domain row of the face's rule (``kinds[2]``, or ``kinds[3]`` for the upper face if given)."""
+    if gz <= k < gz + nz:
+        return k
+    lower = k < gz
+    kind = kinds[2] if lower or kinds.shape[0] < 4 else kinds[3]
+    if kind == FIELD_NEIGHBOUR:
+        return k
+    m = gz - 1 - k if lower else k - gz - nz
+    lo, hi, slo, shi = field_ghost_pair(kind, m, nz, gz)
+    return slo if lower else shi
+
+
+@njit(cache=True, error_model="numpy")
+def row_x_ghosts(row, nv, nx, gx, kind) -> None:
+    """The x ghosts of the flattened padded row ``row`` (``(nx + 2 gx) nv`` values, ``nv`` per
+    cell) from its domain cells, by a copy rule (periodic or mirror; a shear-periodic rule
+    without y copies too)."""
+    for m in range(gx):
+        lo, hi, slo, shi = field_ghost_pair(kind, m, nx, gx)
+        for v in range(nv):
+            row[lo * nv + v] = row[slo * nv + v]
+            row[hi * nv + v] = row[shi * nv + v]
+
+
 @njit(cache=True, parallel=True, error_model="numpy")
 def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, k_lo, k_hi) -> None:
     """Fill the ghost cells of a cell field ``f[NZ, NY, NX, nvar]`` (``g*`` ghost layers per side).
@@ -66,15 +94,10 @@ def fill_field_ghosts(f, gx, gy, gz, kinds, shift, remap_method, remap_limiter, 
     """
     NZ, NY, NX, nvar = f.shape
     nz, ny, nx = NZ - 2 * gz, NY - 2 * gy, NX - 2 * gx
-    kz_lo = kinds[2]
-    kz_hi = kinds[3] if kinds.shape[0] > 3 else kinds[2]
-    for m in range(gz):
-        if kz_lo != FIELD_NEIGHBOUR:
-            lo, _, slo, _ = field_ghost_pair(kz_lo, m, nz, gz)
-            f[lo] = f[slo]
-        if kz_hi != FIELD_NEIGHBOUR:
-            _, hi, _, shi = field_ghost_pair(kz_hi, m, nz, gz)
-            f[hi] = f[shi]
+    for k in range(NZ):  # the z ghost rows (z_source_row: k itself for the others)
+        src = z_source_row(k, nz, gz, kinds)
+        if src != k:
+            f[k] = f[src]
     for m in range(gy):
         lo, hi, slo, shi = field_ghost_pair(kinds[1], m, ny, gy)
         for k in range(k_lo, k_hi):
@@ -101,14 +124,12 @@ def _field_x_ghost_rows(f, gx, gy, kind, shear, shift, remap_method, remap_limit
     out = np.empty(ny)
     work = np.empty(4 * ny + 19)
     for k in range(k0, k1):
+        if not shear:
+            for j in range(NY):
+                row_x_ghosts(f[k, j].reshape(NX * nvar), nvar, nx, gx, kind)
+            continue
         for m in range(gx):
             lo, hi, slo, shi = field_ghost_pair(kind, m, nx, gx)
-            if not shear:
-                for j in range(NY):
-                    for v in range(nvar):
-                        f[k, j, lo, v] = f[k, j, slo, v]
-                        f[k, j, hi, v] = f[k, j, shi, v]
-                continue
             for side in range(2):
                 dst = lo if side == 0 else hi
                 src = slo if side == 0 else shi

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..grid.field_ghosts import FIELD_NEIGHBOUR, field_ghost_pair
+from ..grid.field_ghosts import row_x_ghosts, z_source_row
 
 __all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
 
@@ -318,33 +318,6 @@ def _copy_into(src, dst, n):
         dst[q] = src[q]
 
 
-@njit(cache=True, error_model="numpy")
-def _row_x_ghosts(row, nv, nx, gx, kind) -> None:
-    """The x ghosts of the flattened padded row ``row`` ``((nx + 2 gx) nv)`` of a 2D x-z field from
-    its domain cells (:func:`~dustygas.grid.field_ghosts.fill_field_ghosts`'s rule: a mirror image,
-    else periodic: without y a shear-periodic field copies)."""
-    for m in range(gx):
-        lo, hi, slo, shi = field_ghost_pair(kind, m, nx, gx)
-        for v in range(nv):
-            row[lo * nv + v] = row[slo * nv + v]
-            row[hi * nv + v] = row[shi * nv + v]
-
-
-@njit(cache=True, error_model="numpy")
-def _z_source_row(k, nz, gz, kinds) -> int:
-    """The padded row whose domain cells the padded z row ``k`` of a field holds: ``k`` itself in
-    the domain (and beyond a face a neighbouring block fills), else the row its ghost rule copies."""
-    if gz <= k < gz + nz:
-        return k
-    lower = k < gz
-    kind = kinds[2] if lower or kinds.shape[0] < 4 else kinds[3]
-    if kind == FIELD_NEIGHBOUR:
-        return k
-    m = gz - 1 - k if lower else k - gz - nz
-    lo, hi, slo, shi = field_ghost_pair(kind, m, nz, gz)
-    return slo if lower else shi
-
-
 @njit(cache=True, parallel=True, error_model="numpy")
 def filter_field_xz(f, out, k_lo, k_hi, npiece, gx, gz, kinds) -> None:
     """Ghosts and :func:`filter_field` of a 2D x-z field ``f`` ``(NZ, 1, NX, nv)`` (x and z active),
@@ -360,8 +333,8 @@ def filter_field_xz(f, out, k_lo, k_hi, npiece, gx, gz, kinds) -> None:
     filling them), then along z into ``out``; rows outside ``k_lo .. k_hi-1`` are copied. Rows,
     not columns, are split, as the kernels that write and read the field split them: with pieces
     of columns every thread read the rows the other had just written, and two threads took
-    longer than one (64² cells, 2026-12-03); the ghosts filled serially before the region cost
-    the linA step 8-12 µs (2026-12-05).
+    longer than one (64² cells, 2026-12-03); with the ghosts filled serially before the region the
+    two linA fields took 41 µs on two threads, with them inside 33 µs (2026-12-05).
     """
     NZ, NY, NX, nv = f.shape
     L = NX * nv
@@ -373,11 +346,11 @@ def filter_field_xz(f, out, k_lo, k_hi, npiece, gx, gz, kinds) -> None:
         r0 = c * NZ // npiece
         r1 = (c + 1) * NZ // npiece
         for k in range(r0, r1):  # the ghosts of the piece's own rows
-            src = _z_source_row(k, nz, gz, kinds)
+            src = z_source_row(k, nz, gz, kinds)
             if src != k:
                 _copy_into(a2[src, gx * nv:], a2[k, gx * nv:], nx * nv)
             if k_lo <= k < k_hi:
-                _row_x_ghosts(a2[k], nv, nx, gx, kinds[0])
+                row_x_ghosts(a2[k], nv, nx, gx, kinds[0])
         x0 = max(max(r0, k_lo) - 2, k_lo)  # the rows filtered along x: x0 .. x1-1
         x1 = min(min(r1, k_hi) + 2, k_hi)
         xf = np.empty((max(x1 - x0, 0), L))
@@ -386,8 +359,8 @@ def filter_field_xz(f, out, k_lo, k_hi, npiece, gx, gz, kinds) -> None:
             if r0 <= k < r1:
                 _filter_x_into(a2[k], xf[k - x0], nv)
             else:  # a neighbour's row: its domain cells (or those its ghost rule copies), ghosts here
-                _copy_into(a2[_z_source_row(k, nz, gz, kinds), gx * nv:], mine[gx * nv:], nx * nv)
-                _row_x_ghosts(mine, nv, nx, gx, kinds[0])
+                _copy_into(a2[z_source_row(k, nz, gz, kinds), gx * nv:], mine[gx * nv:], nx * nv)
+                row_x_ghosts(mine, nv, nx, gx, kinds[0])
                 _filter_x_into(mine, xf[k - x0], nv)
         for k in range(r0, r1):
             b = b2[k]
