@@ -25,13 +25,17 @@ run interleaved,
 ``--rounds`` times; printed: wall time to t = 6, cycles, zone-cycles/s, growth rate and its
 error against linear theory (Athena's from its largest-perturbation output, ours from the
 Fourier amplitudes, both with the automatic window of ``dustygas analyze growth``), and the
-ratios of the median wall times.
+ratios of the median wall times. ``--athena-ranks 1,2`` runs Athena (an MPI build) on one and
+two processes in each round, so that each code's own gain from a second core is measured at the
+same moments; ``--tlim 1`` shortens every run (no growth fit) for more rounds.
 
 Usage::
 
     flock benchmarks/.lock python benchmarks/bench_particles.py            # everything
     python benchmarks/bench_particles.py --quick                                      # timed rows only
     flock benchmarks/.lock python benchmarks/bench_particles.py --athena /path/to/athena --rounds 3
+    flock benchmarks/.lock python benchmarks/bench_particles.py --athena /path/to/mpi/athena --athena-ranks 1,2 \
+        --integrators ctu,vl2 --tlim 1 --rounds 5                                 # each code's two-core gain
 """
 
 from __future__ import annotations
@@ -154,8 +158,14 @@ def scheme_sets(name: str) -> list[str]:
     return SCHEMES[name]
 
 
-def full_lina(threads: int, sets: list[str] | None = None) -> dict:
-    """linA 64² 1 ppc, t = 0 -> 6 through the run loop; wall, throughput and growth."""
+#: shortest run whose growth is fitted: the linear window of linA starts near t = 0.3 and the fit
+#: needs a few e-foldings (growth rate 0.42)
+FIT_TLIM = 3.0
+
+
+def full_lina(threads: int, sets: list[str] | None = None, tlim: float = 6.0) -> dict:
+    """linA 64² 1 ppc, t = 0 -> ``tlim`` through the run loop; wall, throughput and (if
+    ``tlim >= FIT_TLIM``) growth."""
     from dustygas import api
     from dustygas.analysis.growth import measure_growth
 
@@ -164,41 +174,44 @@ def full_lina(threads: int, sets: list[str] | None = None) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         cpu0 = time.process_time()
         res = api.run("si-linA", output=Path(tmp) / "linA",
-                      set=[*sets, f"run.threads={threads}", "run.checkpoint_wall=0"])
+                      set=[*sets, f"run.threads={threads}", "run.checkpoint_wall=0", f"run.tlim={tlim!r}"])
         cpu = time.process_time() - cpu0
-        fit = measure_growth(Path(tmp) / "linA")
+        fit = measure_growth(Path(tmp) / "linA") if tlim >= FIT_TLIM else None
     return dict(cycles=res.cycles, wall=res.wall, cpu=cpu, zone_cycles=res.throughput,
-                particle_updates=res.throughput, growth=fit.growth_rate, spread=fit.spread, window=fit.window)
+                particle_updates=res.throughput, fit=fit)
 
 
-def athena_lina(binary: Path, athinput: Path, courant: float = 0.8, ranks: int = 1) -> dict:
+def athena_lina(binary: Path, athinput: Path, courant: float = 0.8, ranks: int = 1, tlim: float = 6.0) -> dict:
     """Athena's streaming2d_single linA: 64², 1 ppc, CTU at ``courant`` (its runs: 0.8), TSC,
-    semi-implicit, t = 0 -> 6; on ``ranks`` MPI processes (the box cut along x)."""
+    semi-implicit, t = 0 -> ``tlim``; on ``ranks`` MPI processes (the box cut along x). Its wall
+    time includes the process start (and ``mpiexec``'s), about 0.1-0.2 s here."""
     from _athena import run_athena, streaming_growth
 
-    overrides = ["time/tlim=6", f"time/cour_no={courant!r}", "time/nlim=10000000", "job/maxout=1", "output1/dt=0.02",
+    overrides = [f"time/tlim={tlim!r}", f"time/cour_no={courant!r}", "time/nlim=10000000", "job/maxout=1", "output1/dt=0.02",
                  "domain1/Nx1=64", "domain1/Nx2=64", "particle/parnumcell=1", "particle/integrator=2",
                  "particle/interp=2", "particle/tsmode=3", "problem/ipert=1", "problem/nwave=1",
                  "problem/amp=1.0e-6"]
-    if ranks > 1:
-        overrides += [f"domain1/NGrid_x1={ranks}", "domain1/NGrid_x2=1"]
+    overrides += [f"domain1/NGrid_x1={ranks}", "domain1/NGrid_x2=1"]  # the input file may ask for more grids
     res = run_athena(binary, athinput, overrides, ranks=ranks)
     (amp,) = [text for name, text in res["files"].items() if name.startswith("Streaming2d")]
-    fit = streaming_growth(amp)
+    fit = streaming_growth(amp) if tlim >= FIT_TLIM else None
     return dict(cycles=res["cycles"], wall=res["wall"], cpu=res["cpu"], zone_cycles=res["cycles"] * 64 * 64 / res["wall"],
-                growth=fit.growth_rate, spread=fit.spread, window=fit.window)
+                fit=fit)
 
 
 def _line(name: str, r: dict) -> str:
-    return (f"{name:<22} {r['cycles']:>7} cycles  wall {r['wall']:7.1f} s  CPU {r['cpu']:7.1f} s  "
-            f"{r['zone_cycles']:.3g} zone-cycles/s  "
-            f"growth {r['growth']:.5f} ({100 * (r['growth'] / LINA_GROWTH - 1):+.2f} %, window "
-            f"{r['window'][0]:.2f}-{r['window'][1]:.2f}, fields within {100 * r['spread']:.2f} %)  load {load()}")
+    fit = r["fit"]
+    growth = "growth not fitted (short run)  " if fit is None else (
+        f"growth {fit.growth_rate:.5f} ({100 * (fit.growth_rate / LINA_GROWTH - 1):+.2f} %, window "
+        f"{fit.window[0]:.2f}-{fit.window[1]:.2f}, fields within {100 * fit.spread:.2f} %)  ")
+    return (f"{name:<22} {r['cycles']:>7} cycles  wall {r['wall']:7.2f} s  CPU {r['cpu']:7.2f} s  "
+            f"{r['zone_cycles']:.3g} zone-cycles/s  {growth}load {load()}")
 
 
 def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], rounds: int, two_threads: bool,
-                 courant: float = 0.8, ranks: int = 1) -> None:
-    """Athena and dustygas linA interleaved, ``rounds`` times; medians and ratios."""
+                 courant: float = 0.8, ranks: tuple[int, ...] = (1,), tlim: float = 6.0) -> None:
+    """Athena (on each of ``ranks`` MPI process counts) and dustygas linA interleaved, ``rounds``
+    times; medians and ratios, and each code's own gain from a second process or thread."""
     from _athena import find_input
 
     athinput = athinput or find_input(binary, "streaming2d_single", "particle")
@@ -206,26 +219,37 @@ def side_by_side(binary: Path, athinput: Path | None, integrators: list[str], ro
     runs: dict[str, list[dict]] = {}
     threads = [1, 2] if two_threads and numba.config.NUMBA_NUM_THREADS >= 2 else [1]
     for rnd in range(rounds):
-        jobs = [("athena", None, 1)] + [(name, scheme_sets(name), t) for name in integrators for t in threads]
+        jobs = [("athena", None, r) for r in ranks] + [(name, scheme_sets(name), t) for name in integrators
+                                                       for t in threads]
         if rnd % 2:  # alternate the order, so that a trend in the machine's load hits both codes alike
             jobs.reverse()
         for name, sets, t in jobs:
-            key = name if name == "athena" else f"dustygas {name} {t}T"
-            parallel = ranks > 1 if name == "athena" else t > 1
-            cores = describe(vector_gain()) if parallel else ""  # benchmarks/_cores.py
-            r = athena_lina(binary, athinput, courant, ranks) if name == "athena" else full_lina(t, sets)
+            key = (f"athena {t} rank{'s' if t > 1 else ''}" if len(ranks) > 1 else "athena") if name == "athena" \
+                else f"dustygas {name} {t}T"
+            cores = describe(vector_gain()) if t > 1 else ""  # benchmarks/_cores.py
+            r = athena_lina(binary, athinput, courant, t, tlim) if name == "athena" else full_lina(t, sets, tlim)
             runs.setdefault(key, []).append(r)
             print(_line(key, r) + (f"  cores before: {cores}" if cores else ""), flush=True)
-    ath = statistics.median(r["wall"] for r in runs["athena"])
-    ath_cpu = statistics.median(r["cpu"] for r in runs["athena"])
-    print(f"# medians over {rounds} round(s); Athena {ath:.1f} s wall, {ath_cpu:.1f} s CPU")
+    anchor = next(key for key in runs if key.startswith("athena"))  # Athena on the first rank count
+    ath = statistics.median(r["wall"] for r in runs[anchor])
+    ath_cpu = statistics.median(r["cpu"] for r in runs[anchor])
+    print(f"# medians over {rounds} round(s); {anchor}: {ath:.1f} s wall, {ath_cpu:.1f} s CPU")
     for key, rs in runs.items():
-        if key == "athena":
+        if key.startswith("athena"):
+            if key != anchor:
+                wall = statistics.median(r["wall"] for r in rs)
+                gains = "/".join(f"{a['wall'] / b['wall']:.2f}" for a, b in zip(runs[anchor], rs))
+                print(f"{key:<22} median wall {wall:7.1f} s  gain over {anchor}: {ath / wall:.2f} (per round {gains})")
             continue
         wall = statistics.median(r["wall"] for r in rs)
         cpu = statistics.median(r["cpu"] for r in rs)
-        print(f"{key:<22} median wall {wall:7.1f} s, CPU {cpu:7.1f} s  Athena / dustygas: wall {ath / wall:.2f}, "
+        print(f"{key:<22} median wall {wall:7.1f} s, CPU {cpu:7.1f} s  {anchor} / dustygas: wall {ath / wall:.2f}, "
               f"CPU {ath_cpu / cpu:.2f} (CPU counts a second thread's spin-waits: compare wall on a quiet machine)")
+        one = runs.get(key.replace(" 2T", " 1T"))
+        if key.endswith(" 2T") and one:
+            gains = "/".join(f"{a['wall'] / b['wall']:.2f}" for a, b in zip(one, rs))
+            print(f"{'':<22} gain of two threads over one: {statistics.median(r['wall'] for r in one) / wall:.2f} "
+                  f"(per round {gains})")
 
 
 def main() -> None:
@@ -236,12 +260,16 @@ def main() -> None:
     ap.add_argument("--athena", type=Path, help="Athena 4.2 binary built for streaming2d_single: run it side by side")
     ap.add_argument("--athinput", type=Path, help="its input file (default: tst/particle/ of its source tree)")
     ap.add_argument("--athena-courant", type=float, default=0.8, help="Athena's Courant number (its linA runs: 0.8)")
-    ap.add_argument("--athena-ranks", type=int, default=1,
-                    help="run Athena on this many MPI ranks (a binary configured with --enable-mpi)")
+    ap.add_argument("--athena-ranks", default="1",
+                    help="run Athena on this many MPI ranks, or on each of a comma-separated list (e.g. 1,2: its own "
+                         "gain from a second process; more than one rank needs a binary configured with --enable-mpi)")
     ap.add_argument("--integrators", default="ctu+hlle+ppm@1.0,ctu+hlle@1.0,ctu,vl2",
                     help="dustygas gas integrators for --athena (vl2, ctu or NAME[+SOLVER][+RECONSTRUCTION][+unfiltered]@COURANT, "
                          "e.g. ctu@0.9, ctu+hlle@1.0, ctu+hlle+ppm@1.0)")
     ap.add_argument("--rounds", type=int, default=1, help="interleaved rounds of --athena")
+    ap.add_argument("--tlim", type=float, default=6.0,
+                    help=f"--athena: end time of both codes' runs (growth fitted from {FIT_TLIM:g} on; shorter "
+                         "runs time more rounds, e.g. 1 for the gain of a second process or thread)")
     ap.add_argument("--one-thread", action="store_true", help="--athena: dustygas on one thread only")
     args = ap.parse_args()
     maxthreads = numba.config.NUMBA_NUM_THREADS
@@ -249,7 +277,7 @@ def main() -> None:
           f"threads available {maxthreads}  load {load()}")
     if args.athena is not None:
         side_by_side(args.athena, args.athinput, args.integrators.split(","), args.rounds, not args.one_thread,
-                     args.athena_courant, args.athena_ranks)
+                     args.athena_courant, tuple(int(r) for r in args.athena_ranks.split(",")), args.tlim)
         return
     if not args.quick:
         one = None
@@ -260,8 +288,8 @@ def main() -> None:
             print(f"linA 64^2 1ppc t=0-6  threads={threads}: {r['cycles']} cycles in {r['wall']:.1f} s  "
                   f"{r['zone_cycles']:.3g} zone-cycles/s = {r['particle_updates']:.3g} particle-updates/s  "
                   f"x{r['zone_cycles'] / a['zone_cycles']:.2f} Athena  (wall x{a['wall'] / r['wall']:.2f})  "
-                  f"growth {r['growth']:.5f} ({100 * (r['growth'] / LINA_GROWTH - 1):+.2f} %, fields within "
-                  f"{100 * r['spread']:.2f} %; Athena {a['growth']} ({100 * (a['growth'] / LINA_GROWTH - 1):+.1f} %))"
+                  f"growth {r['fit'].growth_rate:.5f} ({100 * (r['fit'].growth_rate / LINA_GROWTH - 1):+.2f} %, fields "
+                  f"within {100 * r['fit'].spread:.2f} %; Athena {a['growth']} ({100 * (a['growth'] / LINA_GROWTH - 1):+.1f} %))"
                   f"  2 threads / 1: {r['zone_cycles'] / one['zone_cycles']:.2f}  load {load()}")
     rows = [
         ("linA 64^2 1ppc", lambda: si_engine([]), 64 * 64),
