@@ -11,6 +11,10 @@ excluded: one short untimed run compiles first). Cases:
                 run's fixed cost -- the snapshot, checkpoint and history written at its end, the
                 same on any thread count -- which held the two-thread ratio of a run at 1.73
                 where its steps gained 1.91-1.95);
+* ``si-linA-128`` (only if asked for) the default job at 128^2 cells and 16384 particles, to t = 0.1
+                (3062 steps, about 14 s on one thread): four times the work of a step and the same
+                fixed cost per step (numba's dispatch ~35 µs, the Python between the kernels), so
+                its two-thread ratio shows how much of the 64^2 job's shortfall is the box's size;
 * ``sph``       a 3D SPH box, ``sph-soundwave-3d`` with 32 x 32 x 32 layers, 200 steps (about a
                 minute on one thread; ``run.tlim`` raised so that the steps, not t = 1, end the run:
                 the 40 steps used until 2026-12-03, 6-12 s, gave two-thread ratios of 1.29 and
@@ -50,7 +54,10 @@ CASES = {
     "si-linA": ["si-linA", "--set", "run.tlim=0.5"],
     "grid": ["shearing-wave", "--set", "grid.nx=256", "--set", "grid.ny=256", "--set", "run.max_cycles=1500"],
     "sph": ["sph-soundwave-3d", "--set", "problem.layers=32", "--set", "run.max_cycles=200", "--set", "run.tlim=10"],
+    "si-linA-128": ["si-linA", "--set", "grid.nx=128", "--set", "grid.nz=128", "--set", "run.tlim=0.1"],
 }
+#: the cases run when ``--cases`` is not given (``si-linA-128`` is on request)
+DEFAULT_CASES = ["si-linA", "grid", "sph"]
 #: the untimed run that compiles (or loads) the kernels first: the same case, three steps
 WARMUP = ["--set", "run.max_cycles=3"]
 SETTINGS = {"1T": ["--threads", "1"], "default": [], "2T": ["--threads", "2"]}
@@ -89,7 +96,7 @@ def ratio(label: str, num: list[float], den: list[float]) -> str:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    parser.add_argument("--cases", nargs="+", default=DEFAULT_CASES, choices=list(CASES))
     parser.add_argument("--conditions", nargs="+", default=["busy", "quiet"], choices=["busy", "quiet"])
     parser.add_argument("--settings", nargs="+", default=list(SETTINGS), choices=list(SETTINGS),
                         help="thread settings to time (2T with a busy core can take many times 1T)")

@@ -176,12 +176,23 @@ class ThreadTuner:
 
 class ThreadControl:
     """numba's thread count during a run: fixed (``requested > 0``) or tuned; :meth:`restore` puts back
-    the count found at the start (the tuner's largest candidate)."""
+    the count found at the start (the tuner's largest candidate).
+
+    During the run the BLAS library (OpenBLAS under numpy) is held at one thread. numba's OpenMP
+    threads spin for a while at the end of every parallel region, and OpenBLAS's threads after every
+    call; two pools on the same cores take turns instead of working. The run's BLAS calls are small
+    sums of the diagnostics (``mass @ vel``), and the parallelism of a run is numba's: on the
+    two-core machine, with 16384 particles, one history row took 7.7-9.2 ms on two numba threads
+    with OpenBLAS at its two threads and 1.7-2.0 ms with it at one (2.2-2.6 ms on one numba thread;
+    2026-12-05). :meth:`restore` gives BLAS its thread count back.
+    """
 
     def __init__(self, requested: int):
         import numba
+        from threadpoolctl import threadpool_limits
 
         self._numba = numba
+        self._blas = threadpool_limits(limits=1, user_api="blas")
         self.before = numba.get_num_threads()
         self.tuner = None
         if requested > 0:
@@ -213,3 +224,4 @@ class ThreadControl:
 
     def restore(self) -> None:
         self._numba.set_num_threads(self.before)
+        self._blas.restore_original_limits()

@@ -96,3 +96,22 @@ def test_fixed_threads_are_not_tuned(tmp_path):
 
     res = api.run("toy-oscillator", output=tmp_path / "r", set=["run.threads=1", "run.tlim=0.2"])
     assert res.threads == 1 and "threads: " not in (tmp_path / "r" / "log.txt").read_text()
+
+
+def test_a_run_holds_blas_at_one_thread_and_gives_its_count_back():
+    """numba owns a run's threads: BLAS (OpenBLAS under numpy) works on one thread during it, so that
+    its spinning threads do not take the cores from numba's (dustygas.threads.ThreadControl), and
+    has its own count again afterwards."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from dustygas.threads import ThreadControl
+
+    def blas_threads():
+        return sorted({pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"})
+
+    with threadpool_limits(limits=2, user_api="blas"):  # a known count before the run, on any machine
+        assert blas_threads() == [2]
+        control = ThreadControl(1)
+        assert blas_threads() == [1]
+        control.restore()
+        assert blas_threads() == [2]
