@@ -34,7 +34,13 @@ def main(args: argparse.Namespace) -> int:
         ("platform", f"{platform.system()} {platform.machine()}"),
         ("cpu cores", str(os.cpu_count())),
     ]
-    rows += [(m, _version(m)) for m in ("numpy", "scipy", "numba", "h5py", "matplotlib", "astropy", "tqdm")]
+    rows += [(m, _version(m)) for m in ("numpy", "scipy", "numba", "h5py", "matplotlib", "astropy", "tqdm",
+                                        "threadpoolctl")]
+    from threadpoolctl import threadpool_info
+
+    blas = [f"{pool['internal_api']} {pool['version']}, {pool['num_threads']} threads"
+            for pool in threadpool_info() if pool["user_api"] == "blas"]
+    rows.append(("BLAS", f"{'; '.join(blas) or 'none found'} (held at 1 thread during runs: numba's threads do the work)"))
     rows.append(("numba threads", f"{numba.get_num_threads()} of {numba.config.NUMBA_NUM_THREADS} "
                  f"(layer: {numba.config.THREADING_LAYER}); runs choose between 1 and "
                  f"{numba.get_num_threads()} from measured step times unless --threads N"))
