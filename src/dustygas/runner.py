@@ -345,7 +345,6 @@ class RunLoop:
     def loop(self) -> RunResult:
         """Advance to ``tlim``; return how the run ended."""
         run, s, eng = self.run, self.state, self.engine
-        threads = ThreadControl(run.threads)
         tlim = run.tlim
         start_wall = time.perf_counter()
         last_ckpt_wall = start_wall
@@ -361,6 +360,7 @@ class RunLoop:
         step_wall = 0.0
         agree = getattr(eng, "agree", None)  # several ranks: combine the per-rank decisions
         stop = self.stop
+        threads = ThreadControl(run.threads)  # numba's count and BLAS's, both put back in ``finally``
         try:
             while eng.t < tlim * (1 - 1e-14):
                 if run.max_cycles and eng.cycle - start_cycle >= run.max_cycles:
