@@ -181,7 +181,7 @@ class ThreadControl:
     During the run the BLAS library (OpenBLAS under numpy) is held at one thread. numba's OpenMP
     threads spin for a while at the end of every parallel region, and OpenBLAS's threads after every
     call; two pools on the same cores take turns instead of working. The run's BLAS calls are small
-    sums of the diagnostics (``mass @ vel``), and the parallelism of a run is numba's: on the
+    sums of the diagnostics (``vel @ mass``), and the parallelism of a run is numba's: on the
     two-core machine, with 16384 particles, one history row took 7.7-9.2 ms on two numba threads
     with OpenBLAS at its two threads and 1.7-2.0 ms with it at one (2.2-2.6 ms on one numba thread;
     2026-12-05). :meth:`restore` gives BLAS its thread count back.
