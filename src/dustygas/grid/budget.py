@@ -66,13 +66,16 @@ def budget_sections(rows: np.ndarray, shape: tuple[int, int, int]) -> dict[str, 
 
 def budget_totals(rows: np.ndarray, shape: tuple[int, int, int]) -> np.ndarray:
     """``[radial mass, y-momentum source, mass out through the lower z face, ... the upper]``: each
-    section's correctly rounded sum (:func:`math.fsum`).
+    section's correctly rounded sum (:func:`math.fsum`) over its non-zero entries: the same value
+    (zeros add nothing to the exact sum, and an all-zero section sums to +0.0 either way), but the
+    sections a box does not use -- the z faces of a 2D x-y box, 2 x 65 536 cells at 256^2 -- cost a
+    comparison instead of 1.8 ms of :func:`math.fsum` each per history row (2026-12-05).
 
     >>> rows = np.zeros(budget_offsets(2, 1, 3)[0]); rows[3:6] = [0.1, 0.2, 0.3]
     >>> budget_totals(rows, (2, 1, 3)).tolist()
     [0.0, 0.6, 0.0, 0.0]
     """
-    return np.array([math.fsum(a.ravel()) for a in budget_sections(rows, shape).values()])
+    return np.array([math.fsum(a[a != 0.0]) for a in budget_sections(rows, shape).values()])
 
 
 def budget_rows_from(arrays: dict, shape: tuple[int, int, int]) -> np.ndarray:
