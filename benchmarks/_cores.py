@@ -8,6 +8,11 @@ multiply-add chain per thread gains 2.0 in both -- what two hardware threads of 
 do (they share the vector units; a latency-bound chain leaves them idle for the other thread).
 :func:`vector_gain` measures the first loop in a fresh process (about a second); the benchmarks
 print it beside their two-thread figures so that each figure says which machine it ran on.
+
+That reading holds for the AMD machine it was made on. On an Intel two-vCPU machine (2026-12-05
+afternoon) the probe was bimodal too (0.43-1.87), but its state did not predict our kernels'
+gains: a grid-box repeat probed as "two cores" gained 1.21 and two probed as "shared" 1.77 and
+1.80 (benchmarks/RESULTS.md). There, read the per-repeat ratios, not the label.
 """
 
 from __future__ import annotations
