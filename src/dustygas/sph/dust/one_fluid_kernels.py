@@ -123,7 +123,9 @@ def one_fluid_rates(pos, vel, mass, h, rho, omega, P, u, eps, sqrt_rho_eps, ts, 
                 u_a = u[a]
                 ombar_a = 1.0 / (omega[a] * rho_a)
                 Pfac_a = P_a * ombar_a / rho_a
-                dvx_a, dvy_a, dvz_a = dv[a, 0], dv[a, 1], dv[a, 2]
+                dvx_a = dvy_a = dvz_a = 0.0
+                if full:  # dv (and Q) hold one dummy row in the terminal-velocity model
+                    dvx_a, dvy_a, dvz_a = dv[a, 0], dv[a, 1], dv[a, 2]
                 wfac_a = eps_a * (1.0 - eps_a) * ombar_a
                 fld = 0.0
                 du = 0.0
