@@ -9,6 +9,8 @@ reconstruct, riemann
     Sekora (2008) extremum-preserving limiter; isothermal HLLE and HLLC fluxes.
 sweep
     The fused per-pencil kernel: gather, reconstruct, Riemann solve, update, source terms.
+sweep_columns
+    The same kernel for the y and z sweeps, on blocks of neighbouring columns (vectorised across x).
 integrator
     VL2 (Stone & Gardiner 2009), RK2, RK3 as stage tables; the particle coupling hook.
 boundaries, remap

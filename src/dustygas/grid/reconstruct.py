@@ -43,7 +43,8 @@ from numba import njit
 __all__ = [
     "DONOR", "PLM", "PPM", "PPM_CS", "RECONSTRUCTIONS", "STENCIL_DEPTH",
     "MINMOD", "VANLEER", "MC", "LIMITERS",
-    "limited_slope", "cw84_slope", "cw84_monotone", "cs08_face", "cs08_parabola", "reconstruct_faces",
+    "limited_slope", "cw84_slope", "cw84_face", "cw84_monotone", "cs08_unlimited_face", "cs08_face", "cs08_overshoot",
+    "cs08_is_extremum", "cs08_parabola", "reconstruct_faces",
 ]
 
 DONOR, PLM, PPM, PPM_CS = 0, 1, 2, 3
@@ -116,7 +117,7 @@ def _same_sign_min(d, d1, d2, d3) -> float:
 @njit(cache=True, error_model="numpy", inline="always")
 def cs08_face(am: float, a0: float, ap: float, app: float) -> float:
     """CS08 interface value between cells 0 and p (neighbours m and pp), eqs. 13-15."""
-    face = (7.0 * (a0 + ap) - (am + app)) / 12.0
+    face = cs08_unlimited_face(am, a0, ap, app)
     if (face - a0) * (ap - face) < 0.0:
         d2 = 3.0 * (a0 - 2.0 * face + ap)
         d2l = am - 2.0 * a0 + ap
@@ -128,7 +129,7 @@ def cs08_face(am: float, a0: float, ap: float, app: float) -> float:
 @njit(cache=True, error_model="numpy", inline="always")
 def cs08_parabola(amm: float, am: float, a0: float, ap: float, app: float, al: float, ar: float) -> tuple[float, float]:
     """CS08 edge values of cell 0's parabola from its interface values ``al``, ``ar``."""
-    if (ar - a0) * (a0 - al) <= 0.0 or (a0 - am) * (ap - a0) <= 0.0:
+    if cs08_is_extremum(am, a0, ap, al, ar):
         d2 = 6.0 * (al + ar - 2.0 * a0)
         if d2 == 0.0:
             return a0, a0
@@ -141,93 +142,128 @@ def cs08_parabola(amm: float, am: float, a0: float, ap: float, app: float, al: f
     return al, ar
 
 
-# The loops below index views that start at the first cell they need, with ``i + constant``:
-# numba then knows every index is non-negative and drops its negative-index wraparound
-# handling, which otherwise costs a factor of four in these loops. The limiter functions above
-# are inlined by numba itself (``inline="always"``): as calls LLVM kept them out of line, which
-# made the PPM-CS loops about twice as slow (measured at 64 cells, same arithmetic, same bits).
+@njit(cache=True, error_model="numpy", inline="always")
+def cs08_unlimited_face(am: float, a0: float, ap: float, app: float) -> float:
+    """CS08 eq. 13: the unlimited fourth-order interface value between cells 0 and p."""
+    return (7.0 * (a0 + ap) - (am + app)) / 12.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def cs08_overshoot(a0: float, al: float, ar: float) -> tuple[float, float]:
+    """The overshoot rule of :func:`cs08_parabola` (its last branch) as selects, which vectorise."""
+    ar = a0 - 2.0 * (al - a0) if abs(ar - a0) >= 2.0 * abs(al - a0) else ar
+    al = a0 - 2.0 * (ar - a0) if abs(al - a0) >= 2.0 * abs(ar - a0) else al
+    return al, ar
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def cs08_is_extremum(am: float, a0: float, ap: float, al: float, ar: float) -> bool:
+    """Whether :func:`cs08_parabola` takes its extremum branch in cell 0."""
+    return (ar - a0) * (a0 - al) <= 0.0 or (a0 - am) * (ap - a0) <= 0.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def cw84_face(a0: float, ap: float, s0: float, sp: float) -> float:
+    """CW84 eq. 1.6 on a uniform mesh: the interface value between cells 0 and p from their slopes."""
+    return 0.5 * (a0 + ap) - (sp - s0) / 6.0
+
+
+# The loops below index views that start at the first cell they need, one view per neighbour
+# offset, with the loop index alone: numba then knows every index is non-negative and drops its
+# negative-index wraparound handling, which otherwise costs a factor of four in these loops. The
+# limiter functions above are inlined by numba itself (``inline="always"``): as calls LLVM kept
+# them out of line, which made the PPM-CS loops about twice as slow (measured at 64 cells, same
+# arithmetic, same bits).
+#
+# ``k`` is the distance between neighbouring cells in the buffer: 1 for one pencil, ``B`` for a
+# block of ``B`` pencils stored cell-major (``w[var, s B + c]``: cell ``s`` of pencil ``c``,
+# :mod:`dustygas.grid.sweep_columns`). A loop over ``m`` cells or faces of a pencil then runs over
+# ``m k`` buffer entries, every pencil of the block at once.
 
 
 @njit(cache=True, error_model="numpy")
-def _ppm_cs(w, lo, hi, wl, wr, face):
-    nface = hi - lo + 3  # faces lo-1 .. hi+1
-    ncell = hi - lo + 2  # cells lo-1 .. hi
-    fa = face[lo - 1:]
+def _ppm_cs(w, lo, hi, wl, wr, face, k):
+    nface = (hi - lo + 3) * k  # faces lo-1 .. hi+1
+    ncell = (hi - lo + 2) * k  # cells lo-1 .. hi
+    f0 = face[(lo - 1) * k:]
+    f1 = face[lo * k:]
     for v in range(w.shape[0]):
-        a = w[v, lo - 3:]
+        a0 = w[v, (lo - 3) * k:]
+        a1 = w[v, (lo - 2) * k:]
+        a2 = w[v, (lo - 1) * k:]
+        a3 = w[v, lo * k:]
+        a4 = w[v, (lo + 1) * k:]
         # the unlimited fourth-order faces (a loop the compiler vectorises), then the rare ones
         # outside their neighbours limited: the same values as cs08_face everywhere
+        for i in range(nface):  # face lo-1+i between cells a1 and a2
+            f0[i] = cs08_unlimited_face(a0[i], a1[i], a2[i], a3[i])
         for i in range(nface):
-            fa[i] = (7.0 * (a[i + 1] + a[i + 2]) - (a[i] + a[i + 3])) / 12.0
-        for i in range(nface):
-            if (fa[i] - a[i + 1]) * (a[i + 2] - fa[i]) < 0.0:
-                fa[i] = cs08_face(a[i], a[i + 1], a[i + 2], a[i + 3])
-        right = wr[v, lo - 1:]
-        left = wl[v, lo:]
+            if (f0[i] - a1[i]) * (a2[i] - f0[i]) < 0.0:
+                f0[i] = cs08_face(a0[i], a1[i], a2[i], a3[i])
+        right = wr[v, (lo - 1) * k:]
+        left = wl[v, lo * k:]
         # the overshoot rule of cs08_parabola as selects (vectorised), then its extremum branch
-        # where it applies (the same values as cs08_parabola everywhere)
+        # where it applies (the same values as cs08_parabola everywhere); cell lo-1+i is a2
         for i in range(ncell):
-            a0 = a[i + 2]
-            al = fa[i]
-            ar = fa[i + 1]
-            ar = a0 - 2.0 * (al - a0) if abs(ar - a0) >= 2.0 * abs(al - a0) else ar
-            al = a0 - 2.0 * (ar - a0) if abs(al - a0) >= 2.0 * abs(ar - a0) else al
-            right[i] = al
-            left[i] = ar
+            right[i], left[i] = cs08_overshoot(a2[i], f0[i], f1[i])
         for i in range(ncell):
-            a0 = a[i + 2]
-            if (fa[i + 1] - a0) * (a0 - fa[i]) <= 0.0 or (a0 - a[i + 1]) * (a[i + 3] - a0) <= 0.0:
-                right[i], left[i] = cs08_parabola(a[i], a[i + 1], a0, a[i + 3], a[i + 4], fa[i], fa[i + 1])
+            if cs08_is_extremum(a1[i], a2[i], a3[i], f0[i], f1[i]):
+                right[i], left[i] = cs08_parabola(a0[i], a1[i], a2[i], a3[i], a4[i], f0[i], f1[i])
 
 
 @njit(cache=True, error_model="numpy")
-def _donor(w, lo, hi, wl, wr):
-    nface = hi - lo + 1
+def _donor(w, lo, hi, wl, wr, k):
+    nface = (hi - lo + 1) * k
     for v in range(w.shape[0]):
-        a = w[v, lo - 1:]
-        left = wl[v, lo:]
-        right = wr[v, lo:]
+        am = w[v, (lo - 1) * k:]
+        a0 = w[v, lo * k:]
+        left = wl[v, lo * k:]
+        right = wr[v, lo * k:]
         for i in range(nface):
-            left[i] = a[i]
-            right[i] = a[i + 1]
+            left[i] = am[i]
+            right[i] = a0[i]
 
 
 @njit(cache=True, error_model="numpy")
-def _plm(w, lo, hi, limiter, wl, wr):
-    ncell = hi - lo + 2  # cells lo-1 .. hi
+def _plm(w, lo, hi, limiter, wl, wr, k):
+    ncell = (hi - lo + 2) * k  # cells lo-1 .. hi
     for v in range(w.shape[0]):
-        a = w[v, lo - 2:]
-        left = wl[v, lo:]
-        right = wr[v, lo - 1:]
+        am = w[v, (lo - 2) * k:]
+        a0 = w[v, (lo - 1) * k:]
+        ap = w[v, lo * k:]
+        left = wl[v, lo * k:]
+        right = wr[v, (lo - 1) * k:]
         for i in range(ncell):
-            s = 0.5 * limited_slope(a[i + 1] - a[i], a[i + 2] - a[i + 1], limiter)
-            left[i] = a[i + 1] + s
-            right[i] = a[i + 1] - s
+            s = 0.5 * limited_slope(a0[i] - am[i], ap[i] - a0[i], limiter)
+            left[i] = a0[i] + s
+            right[i] = a0[i] - s
 
 
 @njit(cache=True, error_model="numpy")
-def _ppm(w, lo, hi, wl, wr, slope, face):
-    nslope = hi - lo + 4  # cells lo-2 .. hi+1
-    nface = hi - lo + 3  # faces lo-1 .. hi+1
-    ncell = hi - lo + 2  # cells lo-1 .. hi
-    sl = slope[lo - 2:]
-    fa = face[lo - 1:]
+def _ppm(w, lo, hi, wl, wr, slope, face, k):
+    nslope = (hi - lo + 4) * k  # cells lo-2 .. hi+1
+    nface = (hi - lo + 3) * k  # faces lo-1 .. hi+1
+    ncell = (hi - lo + 2) * k  # cells lo-1 .. hi
+    s0 = slope[(lo - 2) * k:]
+    s1 = slope[(lo - 1) * k:]
+    f0 = face[(lo - 1) * k:]
+    f1 = face[lo * k:]
     for v in range(w.shape[0]):
-        a = w[v, lo - 3:]
-        for i in range(nslope):
-            sl[i] = cw84_slope(a[i], a[i + 1], a[i + 2])
-        for i in range(nface):  # face lo-1+i between cells lo-2+i (a[i+1]) and lo-1+i (a[i+2])
-            fa[i] = 0.5 * (a[i + 1] + a[i + 2]) - (sl[i + 1] - sl[i]) / 6.0
-        right = wr[v, lo - 1:]
-        left = wl[v, lo:]
-        for i in range(ncell):
-            al, ar = cw84_monotone(a[i + 2], fa[i], fa[i + 1])
-            right[i] = al
-            left[i] = ar
+        a0 = w[v, (lo - 3) * k:]
+        a1 = w[v, (lo - 2) * k:]
+        a2 = w[v, (lo - 1) * k:]
+        for i in range(nslope):  # cell lo-2+i is a1
+            s0[i] = cw84_slope(a0[i], a1[i], a2[i])
+        for i in range(nface):  # face lo-1+i between cells lo-2+i (a1) and lo-1+i (a2)
+            f0[i] = cw84_face(a1[i], a2[i], s0[i], s1[i])
+        right = wr[v, (lo - 1) * k:]
+        left = wl[v, lo * k:]
+        for i in range(ncell):  # cell lo-1+i is a2
+            right[i], left[i] = cw84_monotone(a2[i], f0[i], f1[i])
 
 
 @njit(cache=True, error_model="numpy")
-def reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch):
+def reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch, k=1):
     """Left/right states ``wl[:, f]``, ``wr[:, f]`` at faces ``f = lo .. hi`` of a pencil.
 
     Parameters
@@ -241,12 +277,16 @@ def reconstruct_faces(w, lo, hi, method, limiter, wl, wr, scratch):
         Output ``(nvar, N + 1)``.
     scratch
         Work array ``(2, N + 1)`` (PPM slopes and interface values).
+    k
+        Neighbouring cells are ``k`` entries apart: ``k`` pencils stored cell-major (cell ``s``
+        of pencil ``c`` at ``s k + c``; arrays ``(nvar, N k)`` and ``(nvar, (N + 1) k)``) are
+        reconstructed together, face ``f`` of pencil ``c`` written at ``f k + c``.
     """
     if method == DONOR:
-        _donor(w, lo, hi, wl, wr)
+        _donor(w, lo, hi, wl, wr, k)
     elif method == PLM:
-        _plm(w, lo, hi, limiter, wl, wr)
+        _plm(w, lo, hi, limiter, wl, wr, k)
     elif method == PPM:
-        _ppm(w, lo, hi, wl, wr, scratch[0], scratch[1])
+        _ppm(w, lo, hi, wl, wr, scratch[0], scratch[1], k)
     else:
-        _ppm_cs(w, lo, hi, wl, wr, scratch[0])
+        _ppm_cs(w, lo, hi, wl, wr, scratch[0], k)

@@ -27,48 +27,49 @@ import math
 
 from numba import njit
 
-__all__ = ["HLLE", "HLLC", "RIEMANN_SOLVERS", "riemann_fluxes"]
+__all__ = ["HLLE", "HLLC", "RIEMANN_SOLVERS", "hll_face", "riemann_fluxes"]
 
 HLLE, HLLC = 0, 1
 #: name -> code of the Riemann solvers
 RIEMANN_SOLVERS = {"hlle": HLLE, "hllc": HLLC}
 
 
-@njit(cache=True, error_model="numpy")
-def _hll(wl, wr, lo, hi, cs, flux, contact):
+@njit(cache=True, error_model="numpy", inline="always")
+def hll_face(dl, ul, vl, zl, dr, ur, vr, zr, cs, contact):
+    """Fluxes ``(F_rho, F_n, F_t1, F_t2)`` of one face from its left and right primitive states
+    (HLLE, or HLLC if ``contact``; module docstring)."""
     cs2 = cs * cs
-    # views from face lo on: indices i >= 0 let numba skip negative-index handling
-    d_l, u_l, v_l, z_l = wl[0, lo:], wl[1, lo:], wl[2, lo:], wl[3, lo:]
-    d_r, u_r, v_r, z_r = wr[0, lo:], wr[1, lo:], wr[2, lo:], wr[3, lo:]
-    f0, f1, f2, f3 = flux[0, lo:], flux[1, lo:], flux[2, lo:], flux[3, lo:]
-    for i in range(hi - lo + 1):
-        dl = d_l[i]
-        ul = u_l[i]
-        dr = d_r[i]
-        ur = u_r[i]
-        sdl = math.sqrt(dl)
-        sdr = math.sqrt(dr)
-        uroe = (sdl * ul + sdr * ur) / (sdl + sdr)
-        bp = max(max(uroe + cs, ur + cs), 0.0)
-        bm = min(min(uroe - cs, ul - cs), 0.0)
-        # fluxes along the lines x/t = b-, b+ (Einfeldt 1988): F_K - b U_K
-        ml = dl * (ul - bm)
-        mr = dr * (ur - bp)
-        inv = 1.0 / (bp - bm)
-        frho = (bp * ml - bm * mr) * inv
-        f0[i] = frho
-        f1[i] = (bp * (ml * ul + cs2 * dl) - bm * (mr * ur + cs2 * dr)) * inv
-        if contact:
-            upwind = frho >= 0.0
-            f2[i] = frho * (v_l[i] if upwind else v_r[i])
-            f3[i] = frho * (z_l[i] if upwind else z_r[i])
-        else:
-            f2[i] = (bp * ml * v_l[i] - bm * mr * v_r[i]) * inv
-            f3[i] = (bp * ml * z_l[i] - bm * mr * z_r[i]) * inv
+    sdl = math.sqrt(dl)
+    sdr = math.sqrt(dr)
+    uroe = (sdl * ul + sdr * ur) / (sdl + sdr)
+    bp = max(max(uroe + cs, ur + cs), 0.0)
+    bm = min(min(uroe - cs, ul - cs), 0.0)
+    # fluxes along the lines x/t = b-, b+ (Einfeldt 1988): F_K - b U_K
+    ml = dl * (ul - bm)
+    mr = dr * (ur - bp)
+    inv = 1.0 / (bp - bm)
+    frho = (bp * ml - bm * mr) * inv
+    fn = (bp * (ml * ul + cs2 * dl) - bm * (mr * ur + cs2 * dr)) * inv
+    if contact:
+        upwind = frho >= 0.0
+        return frho, fn, frho * (vl if upwind else vr), frho * (zl if upwind else zr)
+    return frho, fn, (bp * ml * vl - bm * mr * vr) * inv, (bp * ml * zl - bm * mr * zr) * inv
 
 
 @njit(cache=True, error_model="numpy")
-def riemann_fluxes(wl, wr, lo, hi, cs, solver, flux):
+def _hll(wl, wr, lo, hi, cs, flux, contact, k):
+    # views from face lo on: indices i >= 0 let numba skip negative-index handling
+    first = lo * k
+    d_l, u_l, v_l, z_l = wl[0, first:], wl[1, first:], wl[2, first:], wl[3, first:]
+    d_r, u_r, v_r, z_r = wr[0, first:], wr[1, first:], wr[2, first:], wr[3, first:]
+    f0, f1, f2, f3 = flux[0, first:], flux[1, first:], flux[2, first:], flux[3, first:]
+    for i in range((hi - lo + 1) * k):
+        f0[i], f1[i], f2[i], f3[i] = hll_face(d_l[i], u_l[i], v_l[i], z_l[i], d_r[i], u_r[i], v_r[i], z_r[i], cs,
+                                              contact)
+
+
+@njit(cache=True, error_model="numpy")
+def riemann_fluxes(wl, wr, lo, hi, cs, solver, flux, k=1):
     """Fluxes at faces ``lo .. hi`` from the face states ``wl``, ``wr`` (see module docstring).
 
     Parameters
@@ -81,8 +82,11 @@ def riemann_fluxes(wl, wr, lo, hi, cs, solver, flux):
         Code from :data:`RIEMANN_SOLVERS`.
     flux
         Output ``(4, N + 1)``.
+    k
+        ``k`` pencils stored face-major (face ``f`` of pencil ``c`` at ``f k + c``; arrays
+        ``(4, (N + 1) k)``), solved together (:func:`~dustygas.grid.reconstruct.reconstruct_faces`).
     """
     if solver == HLLC:
-        _hll(wl, wr, lo, hi, cs, flux, True)
+        _hll(wl, wr, lo, hi, cs, flux, True, k)
     else:
-        _hll(wl, wr, lo, hi, cs, flux, False)
+        _hll(wl, wr, lo, hi, cs, flux, False, k)

@@ -36,7 +36,7 @@ from .reconstruct import reconstruct_faces
 from .riemann import riemann_fluxes
 from .shearing_box import momentum_source
 
-__all__ = ["sweep_pencils", "pencil_count", "pencil_frame", "pencil_order", "gather_primitives"]
+__all__ = ["sweep_pencils", "pencil_count", "pencil_frame", "pencil_order", "pencil_rate", "gather_primitives"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -225,7 +225,7 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
                 d_y[i] -= dtdx * (f_y[i + 1] - f_y[i])
                 d_z[i] -= dtdx * (f_z[i + 1] - f_z[i])
             if want_rate:
-                _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads,
+                pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads,
                              p * nseg + seg)
             continue
         # first sweep: base, input and source terms too
@@ -275,12 +275,12 @@ def sweep_pencils(src, dst, base, axis, first, a, b, dt, lay, sp, scheme, st, xc
             d_z[i] = a * b_z[i] + b * u_z[i] + dt * sz - dtdx * (f_z[i + 1] - f_z[i])
         y_source[p] = ysum
         if want_rate:
-            _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads,
+            pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads,
                          p * nseg + seg)
 
 
 @njit(cache=True, error_model="numpy")
-def _pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads, slot):
+def pencil_rate(d_rho, d_x, d_y, d_z, axis, ia, ib, c0, lay, sp, cs, skip_radial_edges, rates, bads, slot):
     """Largest cell rate of the values just written along a pencil's segment from domain cell
     ``c0`` (see sweep_pencils), into ``rates[slot]``, ``bads[slot]``."""
     nx, ny = lay.nx, lay.ny
