@@ -108,7 +108,8 @@ def test_stiff_heavy_dust_runs_at_the_courant_step_and_decays_at_the_exact_rate(
     if box < 1.0:
         dv = rows[:, 2] - rows[:, 1]
         t = np.r_[0.0, rows[:, 0]]
-        rate = -np.log(dv / np.r_[dv0, dv[:-1]]) / np.diff(t)
+        with np.errstate(invalid="ignore", divide="ignore"):  # round-off differences may change sign
+            rate = -np.log(dv / np.r_[dv0, dv[:-1]]) / np.diff(t)
         ts = mixture_stopping_time(p.K, p.rho_g, p.rho_d)
         measurable = dv > 1e-6 * dv0  # further down the differences of O(1) velocities are round-off
         assert measurable.sum() >= 3
