@@ -25,7 +25,7 @@ from numba import njit
 
 from .reconstruct import reconstruct_faces
 from .riemann import riemann_fluxes
-from .sweep import pencil_frame, pencil_order, pencil_rate
+from .sweep import gather_primitives, pencil_frame, pencil_order, pencil_rate
 
 __all__ = ["BLOCK", "sweep_columns"]
 
@@ -37,23 +37,12 @@ BLOCK = 16
 
 @njit(cache=True, error_model="numpy")
 def _gather_rows(S, off, stride, bw, c1, c2, c3, w) -> None:
-    """``w[:, s BLOCK + c]``: the primitive variables of cell ``s`` of column ``c`` (as
-    :func:`~dustygas.grid.sweep.gather_primitives`, one row of ``bw`` cells at a time)."""
+    """``w[:, s BLOCK + c]``: the primitive variables of cell ``s`` of column ``c``, one row of
+    ``bw`` contiguous cells at a time (:func:`~dustygas.grid.sweep.gather_primitives` along x)."""
     for s in range(w.shape[1] // BLOCK):
-        row = off + s * stride
-        s_rho = S[0, row:row + bw]
-        s_n = S[c1, row:row + bw]
-        s_t1 = S[c2, row:row + bw]
-        s_t2 = S[c3, row:row + bw]
         at = s * BLOCK
-        w0, w1, w2, w3 = w[0, at:at + bw], w[1, at:at + bw], w[2, at:at + bw], w[3, at:at + bw]
-        for c in range(bw):
-            rho = s_rho[c]
-            inv = 1.0 / rho
-            w0[c] = rho
-            w1[c] = s_n[c] * inv
-            w2[c] = s_t1[c] * inv
-            w3[c] = s_t2[c] * inv
+        gather_primitives(S, off + s * stride, 1, c1, c2, c3, w[0, at:at + bw], w[1, at:at + bw], w[2, at:at + bw],
+                          w[3, at:at + bw])
 
 
 @njit(cache=True, error_model="numpy")
