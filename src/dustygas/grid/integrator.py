@@ -155,17 +155,16 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     first_axis = 0 if nx > 1 else (1 if ny > 1 else 2)
     # z slabs in 3D: each thread runs every sweep of its slab of z planes (the z pencils in
     # segments): one parallel region per stage, and the cells a thread writes are the same in every
-    # sweep (and in the particle kernels, which split rows too). Not in 2D, where a z plane is one
-    # row: in a 64^2 x-z box two threads writing the z segments of one state gained 1.52-1.59x (the
-    # same segments written into two separate arrays 1.86-1.88x; whole z pencils split by columns
-    # 1.76-1.81x), which cost the linA corrector stage 12 % of its two-thread time (2026-12-05)
+    # sweep (and in the particle kernels, which split rows too). In 2D, where a z plane is one row,
+    # each sweep is its own parallel region (one slab would be one thread)
     nslab = min(nz, nthreads) if nx > 1 and ny > 1 and nz > 1 else 1
     # in 2D the y or z sweep after the x sweep runs on blocks of columns (sweep_columns), each
     # thread over every column in a band of rows (segments along the sweep's axis): the same rows
     # as its x pencils, so that a thread writes the same memory pages in both sweeps. Split by
     # columns instead, two threads writing alternate parts of every row gained 1.18-1.38x in the
     # z sweep of a 64^2 box against 1.80 by rows (the same code; 1.84-1.88 when each thread wrote
-    # an array of its own: the cost is in sharing the pages, not the cache lines; 2026-12-05)
+    # an array of its own: the cost is in sharing the pages, not the cache lines). The pencil
+    # kernel split by rows gained 1.58 there, by columns 1.60 (2026-12-05, benchmarks/RESULTS.md)
     n_last = nx if last_axis == 0 else (ny if last_axis == 1 else nz)
     nband = min(n_last, nthreads) if nslab == 1 and last_axis > 0 and nx > 1 else 1
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * max(nslab, nband)
