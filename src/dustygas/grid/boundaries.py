@@ -58,7 +58,7 @@ from .shearing_box import shear_offset
 
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "NEIGHBOUR", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
-    "Boundaries", "make_boundaries", "fill_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
+    "Boundaries", "make_boundaries", "fill_ghosts", "fill_band_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
     "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY",
 ]
 
@@ -144,10 +144,13 @@ def _source_index(kind: int, lower: bool, m: int, n: int, g: int) -> int:
 
 
 @njit(cache=True, error_model="numpy")
-def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
+def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1, i0=0, i1=-1):
     """Copy-type kinds (periodic, outflow, reflecting) along ``axis`` for lines ``l0 .. l1-1``
-    (rows j for z, planes k for y and x), over the full extent of the other axes."""
+    (rows j for z, planes k for y and x), over the full extent of the other axes (for z and y:
+    the columns ``i0 .. i1-1``, all if ``i1 < 0``). A side whose kind is ``NEIGHBOUR`` is left alone."""
     nyt, nxt = u.shape[2], u.shape[3]
+    if i1 < 0:
+        i1 = nxt
     flip = 1 + axis  # momentum component normal to this axis
     for side in range(2):
         kind = kind_lo if side == 0 else kind_hi
@@ -168,17 +171,20 @@ def _copy_ghosts(u, axis, n, g, kind_lo, kind_hi, l0, l1):
                         to, frm = u[v, dst, line, :], u[v, src, line, :]
                     else:
                         to, frm = u[v, line, dst, :], u[v, line, src, :]
-                    for i in range(nxt):
+                    for i in range(i0, i1):
                         to[i] = sign * frm[i]
 
 
 @njit(cache=True, error_model="numpy")
-def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
-    """Open vertical boundaries of a stratified isothermal box, rows ``l0 .. l1-1`` (a face
+def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1, side0=0, side1=2, i0=0, i1=-1):
+    """Open vertical boundaries of a stratified isothermal box, rows ``l0 .. l1-1``, sides
+    ``side0 .. side1-1`` (0: lower), columns ``i0 .. i1-1`` (all if ``i1 < 0``) (a face
     that borders another block is left alone; heights ``z_origin + (z_first + k + 1/2) dz``
     of the whole mesh)."""
     nz, gz = lay.nz, lay.gz
-    for side in range(2):
+    if i1 < 0:
+        i1 = u.shape[3]
+    for side in range(side0, side1):
         if (bc.z_lo if side == 0 else bc.z_hi) == NEIGHBOUR:
             continue
         src = gz if side == 0 else gz + nz - 1
@@ -190,10 +196,10 @@ def _hydrostatic_ghosts(u, lay, sp, bc, l0, l1):
             for line in range(l0, l1):
                 for v in range(3):
                     to, frm = u[v, dst, line, :], u[v, src, line, :]
-                    for i in range(to.shape[0]):
+                    for i in range(i0, i1):
                         to[i] = factor * frm[i]
                 to, frm = u[3, dst, line, :], u[3, src, line, :]
-                for i in range(to.shape[0]):
+                for i in range(i0, i1):
                     to[i] = factor * frm[i]
 
 
@@ -287,6 +293,35 @@ def fill_ghosts(u, t, lay, sp, bc) -> None:
     for back in range(3):
         axis = 2 - back
         fill_ghost_lines(u, axis, 0, ghost_lines(axis, lay, bc), t, lay, sp, bc)
+
+
+@njit(cache=True, error_model="numpy")
+def fill_band_ghosts(u, t, lay, sp, bc, k0, k1) -> None:
+    """The ghosts that a band of domain planes ``k0 .. k1-1`` of a radial-vertical (x-z) box
+    owns: the radial ghosts of its planes and, if it holds the first (last) plane, the vertical
+    ghost planes below (above) it with their radial ghosts. Bands that cover the planes fill
+    every ghost cell with the values of :func:`fill_ghosts`, each band reading only domain
+    cells (the vertical copy takes the domain columns; the radial ghosts of a ghost plane are
+    then filled from them, as :func:`fill_ghosts` overwrites what its vertical copy put there),
+    so the bands can fill at the same time: the integrator fills each band's ghosts in the
+    parallel region that sweeps the band. Requires ``ny == 1`` and radial faces that do not
+    border another block.
+    """
+    nx, nz, gx, gz = lay.nx, lay.nz, lay.gx, lay.gz
+    hydrostatic = bc.z_lo == HYDROSTATIC or bc.z_hi == HYDROSTATIC
+    if gz > 0:
+        for side in range(2):
+            if (side == 0 and k0 > 0) or (side == 1 and k1 < nz):
+                continue
+            if hydrostatic:
+                _hydrostatic_ghosts(u, lay, sp, bc, 0, 1, side, side + 1, gx, gx + nx)
+            else:
+                _copy_ghosts(u, 2, nz, gz, bc.z_lo if side == 0 else NEIGHBOUR,
+                             bc.z_hi if side == 1 else NEIGHBOUR, 0, 1, gx, gx + nx)
+    p0 = gz + k0 if k0 > 0 else 0
+    p1 = gz + k1 if k1 < nz else nz + 2 * gz
+    per_plane = 2 if bc.x_lo == SHEAR_PERIODIC else 1  # items (side, plane) of a shear-periodic x-z box
+    fill_ghost_lines(u, 0, per_plane * p0, per_plane * p1, t, lay, sp, bc)
 
 
 @njit(cache=True, error_model="numpy")

@@ -50,7 +50,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .boundaries import PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
+from .boundaries import (NEIGHBOUR, PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, correct_radial_items,
+                         fill_band_ghosts, fill_ghosts_threaded)
 from .budget import budget_offsets
 from .diagnostics import cell_rate, combine_rates, fold_rate
 from .orbital_advection import remap_columns
@@ -167,6 +168,11 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     # kernel split by rows gained 1.58 there, by columns 1.60 (2026-12-05, benchmarks/RESULTS.md)
     n_last = nx if last_axis == 0 else (ny if last_axis == 1 else nz)
     nband = min(n_last, nthreads) if nslab == 1 and last_axis > 0 and nx > 1 else 1
+    # a radial-vertical (x-z) box: one parallel region per stage, each thread filling the ghosts
+    # of its band of rows (fill_band_ghosts), then sweeping x and z over it and correcting its
+    # radial fluxes. Every sweep reads src and writes only its own cells of dst, so the bands need
+    # no barrier between the sweeps (two regions and a serial ghost fill before, 2026-12-05)
+    banded = nslab == 1 and ny == 1 and nx > 1 and nz > 1 and bc.x_lo != NEIGHBOUR and bc.x_hi != NEIGHBOUR
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * max(nslab, nband)
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
     rates = np.zeros(nrate)
@@ -183,11 +189,27 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         method = scheme[0] if ints[s, 3] < 0 else ints[s, 3]
         sch = (method, scheme[1], scheme[2], scheme[3])
         # 1. ghost zones of the input state (in parallel where there is enough work)
-        fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
+        banded_stage = banded and ints[s, 0] != ints[s, 1]
+        if not banded_stage:
+            fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
         # 2. one sweep per active axis; the first one writes base, sources and ext
         y_source = np.zeros(pencil_count(first_axis, lay))
         last_stage = finish and s == s_hi - 1 and not remap
-        if nslab > 1:
+        correct = shearing and weight != 0.0
+        plane_flux = np.zeros(nz)
+        if banded_stage:
+            for c in prange(nband):
+                k0, k1 = c * nz // nband, (c + 1) * nz // nband
+                fill_band_ghosts(src, t_stage, lay, sp, bc, k0, k1)
+                sweep_pencils(src, dst, base, 0, True, a, b, dt_stage, lay, sp, sch, st, xc, zc, ext, use_ext, bflux,
+                              shearing, y_source, rates, bads, False, shearing, k0, k1, 0, nx, 0, 1)
+                sweep_columns(src, dst, 2, dt_stage, lay, sp, sch, zflux, open_z, rates, bads, last_stage, shearing,
+                              0, nx, k0, k1, c, nband)
+                if correct:
+                    correct_radial_items(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, 4 * k0, 4 * k1,
+                                         plane_flux)
+            first = False
+        elif nslab > 1:
             for c in prange(nslab):
                 k0, k1 = c * nz // nslab, (c + 1) * nz // nslab
                 first = True
@@ -233,8 +255,9 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
                 first = False
         # 3. radial fluxes of a shearing box (not for a stage whose fluxes do not enter the
         #    step's net update, like the VL2 predictor: conservation needs only the others)
-        if shearing and weight != 0.0:
-            plane_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, nthreads)
+        if correct:
+            if not banded_stage:
+                plane_flux = correct_radial_fluxes(dst, bflux, dt_stage / sp.dx, t_stage, lay, sp, bc, nthreads)
             for k in range(nz):
                 budget[k] += weight * dt * plane_flux[k] * sp.dy * sp.dz
         if open_z and weight != 0.0:  # mass flux F_z of the two faces: out is -F at the bottom, +F at the top
