@@ -361,9 +361,18 @@ class RunLoop:
         agree = getattr(eng, "agree", None)  # several ranks: combine the per-rank decisions
         stop = self.stop
         threads = ThreadControl(run.threads)  # numba's count and BLAS's, both put back in ``finally``
+        # the run's parameters as plain locals: every step reads them (a section's attribute
+        # lookup is a Python call, and the serial time of a step is what two threads cannot halve)
+        max_cycles, dt_history, dt_snapshot, dt_checkpoint = run.max_cycles, run.dt_history, run.dt_snapshot, \
+            run.dt_checkpoint
+        checkpoint_wall, walltime, history_wall, log_every = run.checkpoint_wall, run.walltime, run.history_wall, \
+            run.log_every
+        t_end = tlim * (1 - 1e-14)
+        messages = getattr(eng, "messages", None)
+        t = eng.t
         try:
-            while eng.t < tlim * (1 - 1e-14):
-                if run.max_cycles and eng.cycle - start_cycle >= run.max_cycles:
+            while t < t_end:
+                if max_cycles and eng.cycle - start_cycle >= max_cycles:
                     status = "max_cycles"
                     break
                 threads.before_step()
@@ -371,37 +380,41 @@ class RunLoop:
                 dt = float(eng.timestep())
                 if not (dt > 0 and math.isfinite(dt)):
                     raise SimulationError(f"invalid time step dt={dt!r} at {self._where()}")
-                dt = min(dt, tlim - eng.t)
+                dt = min(dt, tlim - t)
                 eng.advance(dt)
+                t = eng.t
                 work += eng.work_units
                 diagnostics = None
-                if run.dt_history <= 0 or eng.t >= s.next_history:
+                if dt_history <= 0 or t >= s.next_history:
                     diagnostics = self._finite_diagnostics()
                 now = time.perf_counter()
                 step_wall = max(step_wall * 0.9, now - t_step)
-                self._log_messages(threads.after_step(now - t_step, eng.work_units))
+                decisions = threads.after_step(now - t_step, eng.work_units)
+                if decisions or messages is not None:
+                    self._log_messages(decisions)
                 if diagnostics is not None:
                     self._record_history(diagnostics)
-                    s.next_history = _next_time(s.next_history, run.dt_history, eng.t)
-                if eng.t >= s.next_snapshot:
+                    s.next_history = _next_time(s.next_history, dt_history, t)
+                if t >= s.next_snapshot:
                     self._write_snapshot()
-                    s.next_snapshot = _next_time(s.next_snapshot, run.dt_snapshot, eng.t)
+                    s.next_snapshot = _next_time(s.next_snapshot, dt_snapshot, t)
                 if bar is not None:
-                    bar.n = min(eng.t, tlim)
+                    bar.n = min(t, tlim)
                     bar.set_postfix_str(f"cycle={eng.cycle} dt={dt:.3g}", refresh=False)
                     bar.update(0)
-                elif self.progress_lines and eng.cycle % run.log_every == 0:
-                    print(f"cycle={eng.cycle} time={eng.t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
-                wall_ckpt = run.checkpoint_wall > 0 and now - last_ckpt_wall >= run.checkpoint_wall
-                out_of_time = run.walltime > 0 and (now - start_wall) + 2 * step_wall >= run.walltime
+                elif self.progress_lines and eng.cycle % log_every == 0:
+                    print(f"cycle={eng.cycle} time={t:.6g} dt={dt:.6g}", file=sys.stderr, flush=True)
+                wall_ckpt = checkpoint_wall > 0 and now - last_ckpt_wall >= checkpoint_wall
+                out_of_time = walltime > 0 and (now - start_wall) + 2 * step_wall >= walltime
                 if agree is not None:  # every rank takes the same wall-clock and signal decisions
                     stop.signum, wall_ckpt, out_of_time = agree((stop.take_held(), wall_ckpt, out_of_time))
-                want_ckpt = eng.t >= s.next_checkpoint or wall_ckpt
-                s.next_checkpoint = _next_time(s.next_checkpoint, run.dt_checkpoint, eng.t)
-                if want_ckpt and eng.t < tlim * (1 - 1e-14):
+                want_ckpt = t >= s.next_checkpoint or wall_ckpt
+                if t >= s.next_checkpoint:
+                    s.next_checkpoint = _next_time(s.next_checkpoint, dt_checkpoint, t)
+                if want_ckpt and t < t_end:
                     self.write_checkpoint()
                     last_ckpt_wall = time.perf_counter()
-                elif now - self._last_history_wall >= run.history_wall:
+                elif now - self._last_history_wall >= history_wall:
                     self._write_history()
                 if stop.signum:
                     status = "signal"

@@ -191,6 +191,9 @@ class GridEngine:
             self._zc = periodic_tidal_lever(self._zc, **self._periodic_box())
         nz, ny, nx = mesh.array_shape
         self.states = np.zeros((INTEGRATORS[integrator], 4, nz, ny, nx))
+        #: the state each stage reads (views of ``states``, made once: a step asks for them twice)
+        self._stage_inputs = tuple(self.states[int(i)] for i in self._ints[:, 0])
+        self._nstage = int(self._ints.shape[0])
         self._bflux = np.zeros((2, 4, mesh.shape[2], mesh.shape[1]))
         if integrator == "ctu" and mesh.active[2] and BOUNDARY_KINDS[boundaries[2]] not in (PERIODIC, SHEAR_PERIODIC):
             # the CTU stage does not record the mass fluxes of open z faces (budget[2:4])
@@ -340,9 +343,9 @@ class GridEngine:
 
     def stage_input(self, stage: int) -> np.ndarray:
         """The state ``(4, NZ, NY, NX)`` that ``stage`` reads (for VL2: ``U^n``, then ``U^{n+1/2}``)."""
-        return self.states[self._ints[stage, 0]]
+        return self._stage_inputs[stage]
 
-    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None) -> None:
+    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None, nthreads: int = 0) -> None:
         """Stage ``stage`` of the step from :attr:`t` to ``t + dt``, with the external momentum
         source ``ext`` ``(3, nz, ny, nx)`` (momentum per unit volume and time; C-contiguous
         float64) or None.
@@ -351,22 +354,24 @@ class GridEngine:
         finishes the step (orbital advection, Courant rate, ``t += dt``, ``cycle += 1``). The
         stage fills the ghost zones of its input itself. The stages with ``ext=None`` are
         bit-identical to :meth:`advance`. See :mod:`dustygas.grid.integrator` for the VL2
-        coupling recipe of the particles.
+        coupling recipe of the particles. ``nthreads``: the number of chunks of the parallel
+        loops (0: numba's current thread count; results do not depend on it).
         """
-        nstage = self._ints.shape[0]
+        nstage = self._nstage
+        nthreads = nthreads or numba.get_num_threads()
         use = ext is not None
         if self._ctu is not None:
             w = self._ctu
             rate, bad = ctu_stage(
                 self.states, stage, dt, self.t, self._layout, self._spacing, self._scheme, self._sources, self._bc,
                 self._xc, self._zc, self._oa_rate, ext if use else self._no_ext, use, self._wrap, w.ql, w.qr, w.fluxes,
-                self._bflux, self.budget_rows, numba.get_num_threads(),
+                self._bflux, self.budget_rows, nthreads,
             )
         else:
             rate, bad = advance_gas(
                 self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
                 self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-                ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget_rows, numba.get_num_threads(),
+                ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget_rows, nthreads,
             )
         if stage == nstage - 1:
             self._check(rate, bad)

@@ -173,7 +173,7 @@ class DistributedGridEngine:
         for s in range(self.local.stage_count):
             self.advance_stage(s, dt)
 
-    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None) -> None:
+    def advance_stage(self, stage: int, dt: float, ext: np.ndarray | None = None, nthreads: int = 0) -> None:
         """:meth:`GridEngine.advance_stage <dustygas.grid.engine.GridEngine.advance_stage>` of the
         block (``ext``: the block's source), after the halo exchange of the stage's input."""
         local = self.local
@@ -181,7 +181,7 @@ class DistributedGridEngine:
             units = budget_sections(local.budget_rows, self.block.shape)
             self._kept = [units[name].copy() for name in self._inner_z_budget]
         self.halo.fill(local.stage_input(stage), local.stage_ghost_depth(stage))
-        local.advance_stage(stage, dt, ext)
+        local.advance_stage(stage, dt, ext, nthreads)
         if stage == local.stage_count - 1 and self._inner_z_budget:
             units = budget_sections(local.budget_rows, self.block.shape)
             for name, kept in zip(self._inner_z_budget, self._kept):

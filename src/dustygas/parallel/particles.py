@@ -158,8 +158,8 @@ class BlockGas:
     def cycle(self, value: int) -> None:
         self._local.cycle = value
 
-    def advance_stage(self, stage: int, dt: float, ext=None) -> None:
-        self._dist.advance_stage(stage, dt, ext)
+    def advance_stage(self, stage: int, dt: float, ext=None, nthreads: int = 0) -> None:
+        self._dist.advance_stage(stage, dt, ext, nthreads)
 
 
 class BlockParticleEngine(ParticleGridEngine):

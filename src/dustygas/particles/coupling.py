@@ -507,7 +507,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         # 3. gas predictor
         use_ext = self.feedback or bool(self.gas_terms)
         ext = self._stage_source(u_old, t) if use_ext else None
-        gas.advance_stage(0, h, ext)
+        gas.advance_stage(0, h, ext, nthreads)
         u_half = gas.stage_input(1)
         t_half = t + 0.5 * h
         # 4. the trajectory field
@@ -545,5 +545,5 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             ext = self._stage_source(u_half, t_half)
             if self.gas_terms:
                 add_row_impulse(ext, self._source, self.feedback, h * self.mesh.cell_volume, self.gas_terms_rows)
-        gas.advance_stage(1, h, ext)
+        gas.advance_stage(1, h, ext, nthreads)
         self._exchange(t + h)
