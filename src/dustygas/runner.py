@@ -535,7 +535,7 @@ def run_engine(
             result = loop.loop()
             label = result.work_label or "updates"
             rundir.log(
-                f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.3g}s "
+                f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.4g}s "
                 f"throughput={result.throughput:.4g} {label}/s threads={result.threads}"
             )
             return result

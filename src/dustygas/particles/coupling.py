@@ -216,6 +216,10 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         codes = np.array([DRAG_LAWS[law] for law in laws], dtype=np.int64)
         grain = np.where(codes == EPSTEIN, epstein_grain_size(t_stop, 1.0, rho_ref, gas.cs, 1.0), 0.0)
         self.species = Species(codes, t_stop.copy(), np.ascontiguousarray(grain, dtype=np.float64), float(gas.cs))
+        #: (species, stopping time) of each species with a fixed stopping time, and the cell size of each
+        #: active axis: the per-step Python of the drag coefficients and the step limit reads these
+        self._fixed_t_stop = tuple((s, float(t_stop[s])) for s in range(len(t_stop)) if codes[s] == FIXED)
+        self._active_dx = tuple((a, float(geom.dx[a])) for a in range(3) if geom.shape[a] > 1)
         self.laws = laws
         self.nspecies = len(t_stop)
         # boundaries: the particles' own kinds, checked against the gas's
@@ -371,15 +375,12 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
     def _limit_step(self, dt: float, vmax) -> float:
         """The gas step ``dt`` limited by the particles (largest speeds ``vmax`` per axis) and the drag."""
         rate = 0.0
-        for n, d, v in zip(self.geometry.shape, self.geometry.dx, vmax):
-            if n > 1:
-                rate = max(rate, v / d)
+        for a, d in self._active_dx:
+            rate = max(rate, vmax[a] / d)
         if rate > 0:
             dt = min(dt, self.cfl / rate)
-        if self.drag_cfl > 0:
-            fixed = self.species.t_stop[self.species.law == FIXED]
-            if fixed.size:
-                dt = min(dt, self.drag_cfl * float(fixed.min()))
+        if self.drag_cfl > 0 and self._fixed_t_stop:
+            dt = min(dt, self.drag_cfl * min(ts for _, ts in self._fixed_t_stop))
         return dt
 
     # ------------------------------------------------------------------ the passes
@@ -461,9 +462,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
 
     def _step_coefficients(self, h: float) -> None:
         if h != self._coef_dt:
-            for s in range(self.nspecies):
-                if self.species.law[s] == FIXED:
-                    step_coefficients(float(self.species.t_stop[s]), self.forces.gravity_z, h, self._coef[s])
+            for s, ts in self._fixed_t_stop:
+                step_coefficients(ts, self.forces.gravity_z, h, self._coef[s])
             self._coef_dt = h
 
     def _stage_source(self, state: np.ndarray, t: float) -> np.ndarray:
