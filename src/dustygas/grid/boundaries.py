@@ -52,6 +52,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from ..errors import SetupError
 from .remap import shift_column
 from .shearing_box import shear_offset
@@ -413,7 +414,7 @@ def correct_radial_fluxes(u, bflux, dtdx, t, lay, sp, bc, nthreads) -> np.ndarra
     are independent, so the result does not depend on ``nthreads``.
     """
     nz = lay.nz
-    plane_flux = np.zeros(nz)
+    plane_flux = serial_full(nz, 0.0)  # not a parallel region of its own (dustygas.arrays)
     nitems = 4 * nz
     if (nz > 1 and lay.ny > 1) or lay.ny >= PARALLEL_REMAP_NY:
         nchunk = min(nitems, nthreads)

@@ -48,6 +48,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
 from .budget import budget_offsets
 from .ctu_pencils import final_rows, half_step_rows, predict_pencils, transverse_pencils, transverse_rows
@@ -144,9 +145,9 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
                 predict_pencils(u, axis, lay, sp, scheme, st, xc, zc, ext, use_ext, wrap, dt, ql[axis], qr[axis],
                                 fluxes[axis], c * npen // nchunk, (c + 1) * npen // nchunk)
         if ndim == 3:  # fluxes of each axis corrected by one other axis (Saltzman 1994)
-            tslot = np.zeros(1, dtype=np.int64)
-            tstride = np.zeros(1, dtype=np.int64)
-            tcoef = np.zeros(1)
+            tslot = serial_full(1, 0)
+            tstride = serial_full(1, 0)
+            tcoef = serial_full(1, 0.0)
             for axis in range(3):
                 first, second = _others(axis)
                 for m in range(2):
@@ -172,11 +173,11 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
         return 0.0, -1
     # ---- stage 1: corrected fluxes update U* = U^n - dt div F into slot 1
     nterm = ndim - 1
-    tslot = np.zeros(max(nterm, 1), dtype=np.int64)
-    tstride = np.zeros(max(nterm, 1), dtype=np.int64)
-    tcoef = np.zeros(max(nterm, 1))
-    none_slot = np.zeros(0, dtype=np.int64)
-    none_coef = np.zeros(0)
+    tslot = serial_full(max(nterm, 1), 0)
+    tstride = serial_full(max(nterm, 1), 0)
+    tcoef = serial_full(max(nterm, 1), 0.0)
+    none_slot = serial_full(0, 0)
+    none_coef = serial_full(0, 0.0)
     first_update = True
     for axis in range(3):
         if not active[axis]:
@@ -210,9 +211,9 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
         plane_flux = correct_radial_fluxes(uh, bflux, dt / sp.dx, t_half, lay, sp, bc, nthreads)
         for k in range(nz):
             budget[k] += dt * plane_flux[k] * sp.dy * sp.dz
-    y_source = np.zeros(nrow)
-    rates = np.zeros(nrow)
-    bads = np.full(nrow, -1, dtype=np.int64)
+    y_source = serial_full(nrow, 0.0)
+    rates = serial_full(nrow, 0.0)
+    bads = serial_full(nrow, -1)
     nchunk = min(nrow, nthreads)
     for c in prange(nchunk):
         final_rows(u, uh, lay, sp, st, xc, zc, ext, use_ext, dt, scheme[3], y_source, rates, bads,
@@ -222,8 +223,8 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
         budget[y0 + r] += dt * y_source[r] * sp.dx * sp.dy * sp.dz
     if oa_rate != 0.0 and ny > 1:
         ncol = nx * nz
-        col_rates = np.zeros(ncol)
-        col_bads = np.full(ncol, -1, dtype=np.int64)
+        col_rates = serial_full(ncol, 0.0)
+        col_bads = serial_full(ncol, -1)
         nchunk = min(ncol, nthreads)
         for c in prange(nchunk):
             remap_columns(u, dt, oa_rate, lay, sp, xc, scheme[0], scheme[1], scheme[3], col_rates, col_bads,

@@ -13,6 +13,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
+
 __all__ = ["cell_rate", "row_signal_rate", "combine_rates", "max_signal_rate", "row_sums", "domain_sums"]
 
 
@@ -98,8 +100,8 @@ def combine_rates(rates, bads) -> tuple[float, int]:
 def max_signal_rate(u, lay, sp, cs) -> tuple[float, int]:
     """:func:`row_signal_rate` over the whole domain (see there)."""
     rows = lay.ny * lay.nz
-    rates = np.zeros(rows)
-    bads = np.full(rows, -1, dtype=np.int64)
+    rates = serial_full(rows, 0.0)
+    bads = serial_full(rows, -1)
     for r in prange(rows):
         rates[r], bads[r] = row_signal_rate(u, r, lay, sp, cs)
     return combine_rates(rates, bads)

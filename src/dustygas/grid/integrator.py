@@ -50,6 +50,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .boundaries import (NEIGHBOUR, PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, correct_radial_items,
                          fill_band_ghosts, fill_ghosts_threaded)
 from .budget import budget_offsets
@@ -175,8 +176,8 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     banded = nslab == 1 and ny == 1 and nx > 1 and nz > 1 and bc.x_lo != NEIGHBOUR and bc.x_hi != NEIGHBOUR
     nrate = nx * nz if remap else pencil_count(last_axis, lay) * max(nslab, nband)
     _, y0, zl0, zu0 = budget_offsets(nx, ny, nz)
-    rates = np.zeros(nrate)
-    bads = np.full(nrate, -1, dtype=np.int64)
+    rates = serial_full(nrate, 0.0)  # (small arrays: serial, see dustygas.arrays)
+    bads = serial_full(nrate, -1)
     for s in range(s_lo, s_hi):
         src = states[ints[s, 0]]
         dst = states[ints[s, 1]]
@@ -193,10 +194,10 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         if not banded_stage:
             fill_ghosts_threaded(src, t_stage, lay, sp, bc, nthreads)
         # 2. one sweep per active axis; the first one writes base, sources and ext
-        y_source = np.zeros(pencil_count(first_axis, lay))
+        y_source = serial_full(pencil_count(first_axis, lay), 0.0)
         last_stage = finish and s == s_hi - 1 and not remap
         correct = shearing and weight != 0.0
-        plane_flux = np.zeros(nz)
+        plane_flux = serial_full(nz, 0.0)
         if banded_stage:
             for c in prange(nband):
                 k0, k1 = c * nz // nband, (c + 1) * nz // nband

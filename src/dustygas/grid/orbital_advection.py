@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .diagnostics import cell_rate, combine_rates, fold_rate
 from .remap import shift_column
 
@@ -75,8 +76,8 @@ def orbital_advection(u, dt, shear_rate, lay, sp, xc, method, limiter, cs, nchun
     """Advect ``u`` by the background shear for ``dt`` (all columns; see :func:`remap_columns`);
     returns the largest Courant rate of the result and its first invalid cell."""
     ncol = lay.nx * lay.nz
-    rates = np.zeros(ncol)
-    bads = np.full(ncol, -1, dtype=np.int64)
+    rates = serial_full(ncol, 0.0)
+    bads = serial_full(ncol, -1)
     nchunk = min(ncol, nchunk)
     for c in prange(nchunk):
         remap_columns(u, dt, shear_rate, lay, sp, xc, method, limiter, cs, rates, bads, c * ncol // nchunk,

@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from ..errors import SetupError
 from .interp import axis_cell, stencil_into
 
@@ -208,8 +209,8 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     ncell = nx * ny * nz
     ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
     nchunk = min(max(n, 1), 64)
-    first_bad = np.full(nchunk, -1, dtype=np.int64)
-    unordered = np.zeros(nchunk, dtype=np.int64)  # per chunk: a particle out of canonical order
+    first_bad = serial_full(nchunk, -1)  # (small arrays: serial, see dustygas.arrays)
+    unordered = serial_full(nchunk, 0)  # per chunk: a particle out of canonical order
     # one pass: keys, the order within the chunk, the weights and cell_start as if the order
     # held (as at most steps: few particles change cells); both are redone below if it does not
     for c in prange(nchunk):

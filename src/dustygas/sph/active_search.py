@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .kdtree import leaves_in_reach
 from .pairs import gather_candidates, minimum_image
 from .workshare import WORKERS, next_chunk
@@ -123,7 +124,7 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
     wrap = periodic[0] or periodic[1] or periodic[2]
     ngroups = group.shape[0] - 1
     nchunk = (ngroups + SEARCH_CHUNK - 1) // SEARCH_CHUNK
-    counter = np.zeros(1, np.int64)
+    counter = serial_full(1, 0)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         if c >= nchunk:

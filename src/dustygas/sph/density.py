@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .kernels import kernel_shape
 from .neighbours import minimum_image
 from .workshare import CHUNK, WORKERS, next_chunk
@@ -56,7 +57,7 @@ def solve_smoothing_lengths(pos, mass, h, index, count, h_search, shape, norm, r
     cap = index.shape[1]
     flat = index.reshape(n * cap)  # rows read at offsets: no row view (and no reference count) per particle
     nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
-    counter = np.zeros(1, np.int64)
+    counter = serial_full(1, 0)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         while c < nchunk:
@@ -155,7 +156,7 @@ def gasoline2_correction(pos, mass, h, rho, index, count, shape, radius, length,
     r2max = radius * radius
     n_items = n
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = np.zeros(1, np.int64)
+    counter = serial_full(1, 0)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:

@@ -48,6 +48,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .kernels import kernel_dshape
 from .neighbours import minimum_image
 from .viscosity import conductivity_signal, signal_speed, viscous_pair
@@ -127,7 +128,7 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
     r2max = radius * radius
     conduct = evolve_u and alpha_u > 0.0
     nchunk = (n + CHUNK - 1) // CHUNK
-    counter = np.zeros(1, np.int64)
+    counter = serial_full(1, 0)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         while c < nchunk:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from .pairs import candidate_buffers, gather_candidates, minimum_image, scan_candidates
 from .workshare import WORKERS, next_chunk
 
@@ -164,14 +165,14 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
     qorder, qstart, qend, qchild, qlo, qhi, qhmax = qtree
     sorder, sstart, send, schild, slo, shi, shmax = stree
     r2 = radius * radius
-    inv_l = np.zeros(3)
+    inv_l = serial_full(3, 0.0)
     for d in range(3):
         if periodic[d]:
             inv_l[d] = 1.0 / length[d]
     leaves = np.flatnonzero(qchild == -1)
     n_items = leaves.shape[0]
     n_chunks = (n_items + LEAF_CHUNK - 1) // LEAF_CHUNK
-    counter = np.zeros(1, np.int64)
+    counter = serial_full(1, 0)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:

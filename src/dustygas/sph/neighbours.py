@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit, prange
 
+from ..arrays import serial_full
 from ..errors import SimulationError
 from .kdtree import build_tree, tree_search
 from .pairs import candidate_buffers, minimum_image, scan_candidates
@@ -188,14 +189,14 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
     applied), then test every query of the cell against them in two vectorisable passes."""
     nx, ny, nz = ncell[0], ncell[1], ncell[2]
     # minimum image needed along periodic dimensions held in a single cell
-    inv_l = np.zeros(3)
+    inv_l = serial_full(3, 0.0)
     for d, n in enumerate((nx, ny, nz)):
         if periodic[d] and n == 1:
             inv_l[d] = 1.0 / length[d]
     r2 = radius * radius
     ncells = nx * ny * nz
     nchunk = min(ncells, SEARCH_CHUNKS)
-    counter = np.zeros(1, np.int64)
+    counter = serial_full(1, 0)
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         t = next_chunk(counter)
         while t < nchunk:
