@@ -138,7 +138,10 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     (0: off). ``nthreads`` is the number of chunks the pencils are split into (results do not
     depend on it; numba cannot cache a function that asks for it itself): in 3D, slabs of z
     planes, each running every sweep of the stage in its planes (the z pencils in segments); in
-    2D, one parallel region per sweep, each splitting its pencils.
+    a 2D x-z box, bands of rows, each filling the ghosts it owns
+    (:func:`~dustygas.grid.boundaries.fill_band_ghosts`), sweeping x and z and correcting the
+    radial fluxes of its rows: one parallel region per stage; in other 2D boxes, one parallel
+    region per sweep, each splitting its pencils.
 
     Returns
     -------
@@ -158,7 +161,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
     # z slabs in 3D: each thread runs every sweep of its slab of z planes (the z pencils in
     # segments): one parallel region per stage, and the cells a thread writes are the same in every
     # sweep (and in the particle kernels, which split rows too). In 2D, where a z plane is one row,
-    # each sweep is its own parallel region (one slab would be one thread)
+    # an x-z box runs in bands of rows (below), other boxes one parallel region per sweep
     nslab = min(nz, nthreads) if nx > 1 and ny > 1 and nz > 1 else 1
     # in 2D the y or z sweep after the x sweep runs on blocks of columns (sweep_columns), each
     # thread over every column in a band of rows (segments along the sweep's axis): the same rows
