@@ -59,8 +59,8 @@ from .shearing_box import shear_offset
 
 __all__ = [
     "PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "NEIGHBOUR", "REFLECTING", "HYDROSTATIC", "BOUNDARY_KINDS",
-    "Boundaries", "make_boundaries", "fill_ghosts", "fill_band_ghosts", "ghost_lines", "fill_ghost_lines", "correct_radial_items",
-    "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY",
+    "Boundaries", "make_boundaries", "fill_ghosts", "fill_band_ghosts", "ghost_lines", "fill_ghost_lines",
+    "correct_radial_items", "correct_radial_fluxes", "fill_ghosts_threaded", "PARALLEL_REMAP_NY",
 ]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING, HYDROSTATIC = 0, 1, 2, 3, 4
@@ -321,7 +321,7 @@ def fill_band_ghosts(u, t, lay, sp, bc, k0, k1) -> None:
                              bc.z_hi if side == 1 else NEIGHBOUR, 0, 1, gx, gx + nx)
     p0 = gz + k0 if k0 > 0 else 0
     p1 = gz + k1 if k1 < nz else nz + 2 * gz
-    per_plane = 2 if bc.x_lo == SHEAR_PERIODIC else 1  # items (side, plane) of a shear-periodic x-z box
+    per_plane = ghost_lines(0, lay, bc) // (nz + 2 * gz)  # radial items a plane: 1, or 2 if shear-periodic
     fill_ghost_lines(u, 0, per_plane * p0, per_plane * p1, t, lay, sp, bc)
 
 

@@ -25,7 +25,6 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..arrays import serial_full
 from .density import row_buffers, solve_one_smoothing_length
 from .dust.two_fluid_kernels import KERNEL_AVERAGE, KERNEL_OTHER, KERNEL_OWN, drag_pair
 from .forces import NPACK, pack_row, pressure_pair
@@ -33,7 +32,7 @@ from .kernels import kernel_dshape, kernel_shape
 from .neighbours import minimum_image
 from .particles import GAS
 from .viscosity import signal_speed, viscous_pair
-from .workshare import CHUNK, WORKERS, next_chunk
+from .workshare import CHUNK, WORKERS, new_counter, next_chunk
 
 __all__ = ["active_densities", "pack_hydro", "active_hydro", "active_drag", "gas_at_dust", "reverse_rows", "kick_active",
            "kick_passive", "kick_external", "limit_levels", "HYDRO", "DRAG", "NPACK"]
@@ -54,7 +53,7 @@ def active_densities(act, pos, mass, h_guess, h_search, same_start, same_index, 
     rows (:func:`dustygas.sph.density.solve_one_smoothing_length`); outputs per slot."""
     n = act.shape[0]
     nchunk = (n + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         while c < nchunk:
@@ -101,7 +100,7 @@ def active_hydro(act, ptype, packed, same_start, same_index, same_count, shape, 
     r2max = radius * radius
     n_items = act.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:
@@ -209,7 +208,7 @@ def active_drag(act, ptype, table, cross_start, cross_index, cross_count, shape,
     """
     n_items = act.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:
@@ -249,7 +248,7 @@ def gas_at_dust(act, ptype, pos, mass, h, rho, cs, cross_start, cross_index, cro
     :math:`c_s = \\sum_a (m_a/\\rho_a) c_{s,a} W / \\sum_a (m_a/\\rho_a) W` (zero without neighbours)."""
     n_items = act.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:
@@ -283,7 +282,7 @@ def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_sta
     position in the same- or cross-row buffer, ``HYDRO`` or ``DRAG``), in slot order (a counting sort,
     serial: :math:`O(N)` plus the entries)."""
     n_all = slot.shape[0]
-    fill = serial_full(n_all, 0)  # entries per particle, then the next free position of its run
+    fill = np.zeros(n_all, np.int64)  # entries per particle, then the next free position of its run
     total = 0
     for i in range(act.shape[0]):
         if ptype[act[i]] == GAS:
@@ -301,7 +300,7 @@ def reverse_rows(act, slot, ptype, same_start, same_index, same_count, cross_sta
     for b in range(n_all):
         n_passive += fill[b] > 0
     passive = np.empty(n_passive, np.int64)
-    ptr = serial_full(n_passive + 1, 0)
+    ptr = np.zeros(n_passive + 1, np.int64)
     u = 0
     run = 0
     for b in range(n_all):
@@ -355,7 +354,7 @@ def kick_active(act, ptype, pos, mass, tau_old, tau_new, last_tick, tick, tick_d
     """
     n_items = act.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:
@@ -407,7 +406,7 @@ def kick_passive(passive, ptr, e_slot, e_pos, e_kind, act, pos, mass, tau_old, t
     together, :func:`kick_active`), in place on ``vel``."""
     n_items = passive.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:

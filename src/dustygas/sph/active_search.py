@@ -19,10 +19,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..arrays import serial_full
 from .kdtree import leaves_in_reach
 from .pairs import gather_candidates, minimum_image
-from .workshare import WORKERS, next_chunk
+from .workshare import WORKERS, new_counter, next_chunk
 
 __all__ = ["DEAD", "refit_tree", "leaf_of_particles", "active_search", "schedule", "drift_and_accrete"]
 
@@ -124,7 +123,7 @@ def active_search(pos, h_src, ptype, act, group, h_query, order, start, end, chi
     wrap = periodic[0] or periodic[1] or periodic[2]
     ngroups = group.shape[0] - 1
     nchunk = (ngroups + SEARCH_CHUNK - 1) // SEARCH_CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         if c >= nchunk:

@@ -28,10 +28,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..arrays import serial_full
 from .kernels import kernel_shape
 from .neighbours import minimum_image
-from .workshare import CHUNK, WORKERS, next_chunk
+from .workshare import CHUNK, WORKERS, new_counter, next_chunk
 
 __all__ = ["H_CONVERGED", "H_NEEDS_NEIGHBOURS", "H_NOT_CONVERGED", "solve_smoothing_lengths",
            "solve_one_smoothing_length", "row_buffers", "gasoline2_correction", "DENSITY_CHUNK"]
@@ -57,7 +56,7 @@ def solve_smoothing_lengths(pos, mass, h, index, count, h_search, shape, norm, r
     cap = index.shape[1]
     flat = index.reshape(n * cap)  # rows read at offsets: no row view (and no reference count) per particle
     nchunk = (n + DENSITY_CHUNK - 1) // DENSITY_CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         while c < nchunk:
@@ -156,7 +155,7 @@ def gasoline2_correction(pos, mass, h, rho, index, count, shape, radius, length,
     r2max = radius * radius
     n_items = n
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:

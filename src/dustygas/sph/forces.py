@@ -48,11 +48,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..arrays import serial_full
 from .kernels import kernel_dshape
 from .neighbours import minimum_image
 from .viscosity import conductivity_signal, signal_speed, viscous_pair
-from .workshare import CHUNK, WORKERS, next_chunk
+from .workshare import CHUNK, WORKERS, new_counter, next_chunk
 
 __all__ = ["PRICE2012", "GASOLINE2", "FORCE_FORMS", "NPACK", "pack_particles", "pack_row", "pressure_pair",
            "hydro_forces"]
@@ -128,7 +127,7 @@ def hydro_forces(packed, index, count, shape, radius, length, periodic, form, be
     r2max = radius * radius
     conduct = evolve_u and alpha_u > 0.0
     nchunk = (n + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         c = next_chunk(counter)
         while c < nchunk:

@@ -19,7 +19,7 @@ from numba import njit, prange
 
 from ..arrays import serial_full
 from .pairs import candidate_buffers, gather_candidates, minimum_image, scan_candidates
-from .workshare import WORKERS, next_chunk
+from .workshare import WORKERS, new_counter, next_chunk
 
 __all__ = ["build_tree", "tree_search"]
 
@@ -172,7 +172,7 @@ def tree_search(qpos, qh, qtree, spos, sh, stree, length, periodic, radius, excl
     leaves = np.flatnonzero(qchild == -1)
     n_items = leaves.shape[0]
     n_chunks = (n_items + LEAF_CHUNK - 1) // LEAF_CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:

@@ -41,7 +41,7 @@ from ..arrays import serial_full
 from ..errors import SimulationError
 from .kdtree import build_tree, tree_search
 from .pairs import candidate_buffers, minimum_image, scan_candidates
-from .workshare import WORKERS, next_chunk
+from .workshare import WORKERS, new_counter, next_chunk
 
 __all__ = ["Box", "NeighbourList", "NeighbourFinder", "minimum_image"]
 
@@ -196,7 +196,7 @@ def _search(qpos, qh, qstart, qorder, spos, sh, sstart, sorder, ncell, length, p
     r2 = radius * radius
     ncells = nx * ny * nz
     nchunk = min(ncells, SEARCH_CHUNKS)
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         t = next_chunk(counter)
         while t < nchunk:

@@ -10,34 +10,44 @@ next chunk of particles from a shared counter (:func:`next_chunk`, an atomic fet
 none is left, so a thread that falls behind simply takes fewer chunks (the workers that start after
 the last chunk is gone return at once)::
 
-    counter = np.zeros(1, np.int64)
+    counter = new_counter()
     for _worker in prange(WORKERS):
         c = next_chunk(counter)
         while c < nchunk:
             ...  # the particles of chunk c
             c = next_chunk(counter)
 
-The counter is allocated in the kernel with ``np.zeros`` before the loop and never read after
-it: numba does not know that :func:`next_chunk` writes it, so it keeps the (zero-filling)
+The counter is allocated in the kernel by :func:`new_counter` before the loop and never read
+after it: numba does not know that :func:`next_chunk` writes it, so it keeps the (zero-filling)
 allocation before the loop, which reads the counter, but may move a later read of it before the
-loop. (``numba.get_num_threads()`` inside a kernel would make it uncachable: it reads a C pointer.)
+loop. :func:`new_counter` fills it on one thread: ``np.zeros`` in a parallel kernel would be a
+parallel region of its own (:mod:`dustygas.arrays`). (``numba.get_num_threads()`` inside a kernel
+would make it uncachable: it reads a C pointer.)
 Each chunk writes only its own particles' results, computed the same way whichever thread takes
 it, so the results are bit-identical for any thread count and any interleaving.
 """
 
 from __future__ import annotations
 
-from numba import types
+from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-__all__ = ["CHUNK", "WORKERS", "next_chunk"]
+from ..arrays import serial_full
+
+__all__ = ["CHUNK", "WORKERS", "new_counter", "next_chunk"]
 
 #: iterations of the ``prange`` whose bodies take the chunks: at least the number of threads
 WORKERS = 64
 #: particles (or tree leaves) per chunk of a pair loop: fine enough to even out a few milliseconds'
 #: interruption of one thread, coarse enough that the counter is touched once per ~0.1 ms of work
 CHUNK = 32
+
+
+@njit(cache=True)
+def new_counter():
+    """The shared chunk counter of a dynamically shared loop: one int64, zero."""
+    return serial_full(1, 0)
 
 
 @intrinsic

@@ -79,13 +79,11 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit, prange
 
-from ...arrays import serial_full
 from ..kernels import kernel_dshape
 from ..neighbours import minimum_image
-from ..workshare import CHUNK, WORKERS, next_chunk
+from ..workshare import CHUNK, WORKERS, new_counter, next_chunk
 
 __all__ = ["TERMINAL_VELOCITY", "FULL", "one_fluid_rates"]
 
@@ -109,7 +107,7 @@ def one_fluid_rates(pos, vel, mass, h, rho, omega, P, u, eps, sqrt_rho_eps, ts, 
     full = model == FULL
     n_items = n
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:

@@ -53,10 +53,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ...arrays import serial_full
 from ..kernels import kernel_dshape, kernel_shape
 from ..neighbours import minimum_image
-from ..workshare import CHUNK, WORKERS, next_chunk
+from ..workshare import CHUNK, WORKERS, new_counter, next_chunk
 
 __all__ = ["pack", "velocity_gradient", "drag_pass", "drag_pair", "mc_limiter", "KERNEL_AVERAGE", "KERNEL_OWN",
            "KERNEL_OTHER"]
@@ -75,7 +74,7 @@ def velocity_gradient(packed, h, rho, omega, index, count, shape, norm, ndim, le
     stored row-major in ``grad[a, 3 k + j]``; ``packed`` rows are ``(x, y, z, vx, vy, vz, m)`` (:func:`pack`)."""
     n_items = packed.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:
@@ -169,7 +168,7 @@ def drag_pass(table, grad, otable, ograd, index, count, shape, ndim, length, per
     """
     n_items = table.shape[0]
     n_chunks = (n_items + CHUNK - 1) // CHUNK
-    counter = serial_full(1, 0)
+    counter = new_counter()
     for _worker in prange(WORKERS):  # chunks handed out dynamically (dustygas.sph.workshare)
         chunk = next_chunk(counter)
         while chunk < n_chunks:
