@@ -49,11 +49,13 @@ import numpy as np
 from numba import njit, prange
 
 from ..arrays import serial_full
-from .boundaries import SHEAR_PERIODIC, correct_radial_fluxes, fill_ghosts_threaded
+from .boundaries import SHEAR_PERIODIC, Boundaries, correct_radial_fluxes, fill_ghosts_threaded
 from .budget import budget_offsets
 from .ctu_pencils import final_rows, half_step_rows, predict_pencils, transverse_pencils, transverse_rows
 from .diagnostics import combine_rates
+from .mesh import Layout, Spacing
 from .orbital_advection import remap_columns
+from .shearing_box import SourceTerms
 from .sweep import pencil_frame
 
 __all__ = ["CTUWork", "ctu_work", "ctu_stage"]
@@ -107,8 +109,8 @@ def _corrected_slot(axis, other):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ext, use_ext, wrap, ql, qr, fluxes,
-              bflux, budget, nthreads) -> tuple[float, int]:
+def ctu_stage(states, stage, dt, t, layout, spacing, scheme, terms, bounds, xc, zc, oa_rate, ext, use_ext, wrap, ql,
+              qr, fluxes, bflux, budget, nthreads) -> tuple[float, int]:
     """Stage ``stage`` (0 or 1) of the CTU step from ``t`` to ``t + dt`` (module docstring).
 
     ``states[0]`` is ``U^n`` (``U^{n+1}`` after stage 1), ``states[1]`` receives ``U^{n+1/2}``
@@ -123,6 +125,12 @@ def ctu_stage(states, stage, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate, ex
     rate, bad
         Stage 1: the Courant rate of ``U^{n+1}`` and its first invalid cell; stage 0: 0, -1.
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    st = SourceTerms(*terms)
+    bc = Boundaries(*bounds)
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     u = states[0]
     uh = states[1]

@@ -23,7 +23,7 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError, UserError
-from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, fill_ghosts, make_boundaries
+from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, Boundaries, fill_ghosts, make_boundaries
 from .budget import budget_offsets, budget_rows_from, budget_totals
 from .ctu import ctu_stage, ctu_work
 from .diagnostics import domain_sums, max_signal_rate
@@ -178,6 +178,10 @@ class GridEngine:
             scale_height=cs / omega if vertical_gravity and omega > 0 else 0.0,
         )._replace(z_origin=float(mesh.origin[2]), z_first=int(mesh.offsets.k0))
         self._oa_rate = q * omega if self.orbital_advection and mesh.active[1] else 0.0
+        # the stages' named-tuple arguments as plain tuples (numba types a named one in Python at
+        # every call, ~0.6 µs each; the kernels rebuild them, dustygas.grid.mesh)
+        self._layout_t, self._spacing_t = tuple(self._layout), tuple(self._spacing)
+        self._sources_t = tuple(self._sources)  # (and the boundaries': _bc_t)
         # v_y(full) = v_y(stored) - to_full x ;  v_y(relative to shear) = v_y(stored) + to_relative x
         self._to_full = q * omega if self.orbital_advection else 0.0
         self._to_relative = 0.0 if self.orbital_advection else q * omega
@@ -298,6 +302,15 @@ class GridEngine:
             )
         return self.cfl / self._rate
 
+    @property
+    def _bc(self) -> Boundaries:
+        """The gas boundaries (kept with their plain tuple, :attr:`_bc_t`, that the stages take)."""
+        return self._bc_named
+
+    @_bc.setter
+    def _bc(self, value: Boundaries) -> None:
+        self._bc_named, self._bc_t = value, tuple(value)
+
     def advance(self, dt: float) -> None:
         """One step of the configured integrator (fused: one call into compiled code)."""
         if self._ctu is not None:
@@ -306,9 +319,9 @@ class GridEngine:
             return
         nstage = self._ints.shape[0]
         rate, bad = advance_gas(
-            self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout, self._spacing,
-            self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate, self._no_ext, False,
-            self._bflux, self._zflux, self.budget_rows, numba.get_num_threads(),
+            self.states, self._ints, self._reals, 0, nstage, True, dt, self.t, self._layout_t,
+            self._spacing_t, self._scheme, self._sources_t, self._bc_t, self._xc, self._zc, self._oa_rate, self._no_ext,
+            False, self._bflux, self._zflux, self.budget_rows, numba.get_num_threads(),
         )
         self._check(rate, bad)
         self.t += dt
@@ -363,15 +376,15 @@ class GridEngine:
         if self._ctu is not None:
             w = self._ctu
             rate, bad = ctu_stage(
-                self.states, stage, dt, self.t, self._layout, self._spacing, self._scheme, self._sources, self._bc,
-                self._xc, self._zc, self._oa_rate, ext if use else self._no_ext, use, self._wrap, w.ql, w.qr, w.fluxes,
-                self._bflux, self.budget_rows, nthreads,
+                self.states, stage, dt, self.t, self._layout_t, self._spacing_t, self._scheme, self._sources_t,
+                self._bc_t, self._xc, self._zc, self._oa_rate, ext if use else self._no_ext, use, self._wrap, w.ql,
+                w.qr, w.fluxes, self._bflux, self.budget_rows, nthreads,
             )
         else:
             rate, bad = advance_gas(
-                self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t, self._layout,
-                self._spacing, self._scheme, self._sources, self._bc, self._xc, self._zc, self._oa_rate,
-                ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget_rows, nthreads,
+                self.states, self._ints, self._reals, stage, stage + 1, stage == nstage - 1, dt, self.t,
+                self._layout_t, self._spacing_t, self._scheme, self._sources_t, self._bc_t, self._xc, self._zc,
+                self._oa_rate, ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget_rows, nthreads,
             )
         if stage == nstage - 1:
             self._check(rate, bad)

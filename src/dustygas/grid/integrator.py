@@ -51,12 +51,14 @@ import numpy as np
 from numba import njit, prange
 
 from ..arrays import serial_full
-from .boundaries import (NEIGHBOUR, PERIODIC, SHEAR_PERIODIC, correct_radial_fluxes, correct_radial_items,
+from .boundaries import (NEIGHBOUR, PERIODIC, SHEAR_PERIODIC, Boundaries, correct_radial_fluxes, correct_radial_items,
                          fill_band_ghosts, fill_ghosts_threaded)
 from .budget import budget_offsets
 from .diagnostics import cell_rate, combine_rates, fold_rate
+from .mesh import Layout, Spacing
 from .orbital_advection import remap_columns
 from .reconstruct import DONOR
+from .shearing_box import SourceTerms
 from .sweep import pencil_count, sweep_pencils
 from .sweep_columns import sweep_columns
 
@@ -122,7 +124,7 @@ def integrator_tables(name: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme, st, bc, xc, zc, oa_rate,
+def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, layout, spacing, scheme, terms, bounds, xc, zc, oa_rate,
                 ext, use_ext, bflux, zflux, budget, nthreads) -> tuple[float, int]:
     """Stages ``s_lo .. s_hi-1`` of the step from ``t`` to ``t + dt``, then (if ``finish``)
     orbital advection and the Courant rate of the new state.
@@ -149,6 +151,12 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, lay, sp, scheme,
         :func:`~dustygas.grid.diagnostics.row_signal_rate` over the new state (0, -1 if
         ``finish`` is False).
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    st = SourceTerms(*terms)
+    bc = Boundaries(*bounds)
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     dvol = sp.dx * sp.dy * sp.dz
     shearing = bc.x_lo == SHEAR_PERIODIC

@@ -261,7 +261,7 @@ class BlockParticleEngine(ParticleGridEngine):
         pos, vel, species, pid, mass = p.buffers()
         n = p.n
         shift = self.geometry.shear_offset(t)
-        count = apply_boundaries(pos, vel, n, self._lay, self._sp, self._pb, shift, self._leaving, half_dt)
+        count = apply_boundaries(pos, vel, n, self._lay_t, self._sp_t, self._pb_t, shift, self._leaving, half_dt)
         flags = self._leaving[:n]
         if count:  # the z faces: the end blocks hold every particle that leaves through them
             add_lost(self.lost, flags, p.mass, p.vel, (4, 5))
@@ -323,7 +323,7 @@ class BlockParticleEngine(ParticleGridEngine):
         if p.capacity > self._capacity:
             self._allocate(p.capacity)
         pos, vel, species, pid, mass = p.buffers()
-        bad = sort_by_cell(pos, vel, species, pid, mass, p.n, self._lay, self._sp, self._off, self._keys,
+        bad = sort_by_cell(pos, vel, species, pid, mass, p.n, self._lay_t, self._sp_t, self._off_t, self._keys,
                            self._order_work, self._ptr, self._cell_start, self._fwork, self._iwork, self._order, self._R,
                            self._wts)
         if bad < 0:  # else the next step's sort stops the run on every rank

@@ -41,6 +41,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import SetupError
+from ..grid.mesh import Layout, Spacing
 from .interp import cell_weights
 
 __all__ = ["PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "PARTICLE_BOUNDARIES", "ParticleBoundaries",
@@ -123,7 +124,7 @@ def _reflect(v: float, lo: float, length: float):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def apply_boundaries(pos, vel, n, lay, sp, pb, y_shift, leaving, half_dt=0.0) -> int:
+def apply_boundaries(pos, vel, n, layout, spacing, bounds, y_shift, leaving, half_dt=0.0) -> int:
     """The exchange step for particles ``0 .. n-1`` after a drift (module docstring).
 
     ``y_shift``: the shear offset ``s_y`` at the time of the positions. Periodic, shear-periodic
@@ -132,6 +133,11 @@ def apply_boundaries(pos, vel, n, lay, sp, pb, y_shift, leaving, half_dt=0.0) ->
     number leaving (the caller accounts and removes them). ``half_dt != 0``: first the drift
     ``x += half_dt v`` along the active axes, in the same pass.
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    pb = ParticleBoundaries(*bounds)
     count = 0
     kinds = (pb.x, pb.y, pb.z)
     nn = (lay.nx, lay.ny, lay.nz)
@@ -294,8 +300,8 @@ def _images_along(axis, m0, m1, n, lay, sp, pb, reach, order, y_shift, keys, wts
 
 
 @njit(cache=True, error_model="numpy")
-def build_images(n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start, img_src, img_cell, img_w,
-                 img_dvy) -> int:
+def build_images(n, layout, spacing, bounds, reach, order, y_shift, keys, wts, pos, cell_start, img_src, img_cell,
+                 img_w, img_dvy) -> int:
     """Image records of the sorted particles ``0 .. n-1`` (module docstring): along x, then y
     (of the particles and the x images), then z (of all). Returns their number; if it exceeds
     the length of the arrays, not all were written (nor counted): grow them and call again.
@@ -304,6 +310,11 @@ def build_images(n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_sta
     particles' domain cells; ``wts`` ``(N, 3, W)`` their weights; ``y_shift`` the shear
     offset at the time of the positions.
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    pb = ParticleBoundaries(*bounds)
     m = _images_along(0, 0, 0, n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,
                       img_src, img_cell, img_w, img_dvy)
     m = _images_along(1, 0, m, n, lay, sp, pb, reach, order, y_shift, keys, wts, pos, cell_start,

@@ -29,11 +29,11 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     store = ParticleStore.create(pos, np.zeros((3, n)), 0, mass)
     active = tuple(s > 1 for s in mesh.shape)
     gas_kinds = tuple(b if b in ("periodic", "shear-periodic") else "outflow" for b in boundaries)
-    pb = make_particle_boundaries(tuple(boundaries), gas_kinds, active, 0.0, 0.0)
+    pb = tuple(make_particle_boundaries(tuple(boundaries), gas_kinds, active, 0.0, 0.0))  # plain (grid.mesh)
     order = KERNELS[kernel]
     R = KERNEL_REACH[order]
     reach = np.array([R if a else 0 for a in active], dtype=np.int64)
-    lay, sp, off = mesh.layout, mesh.spacing, mesh.offsets
+    lay, sp, off = tuple(mesh.layout), tuple(mesh.spacing), tuple(mesh.offsets)
     nx, ny, nz = mesh.shape
     ncell = nx * ny * nz
     keys = np.zeros(n, dtype=np.int64)

@@ -26,6 +26,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..grid.field_ghosts import row_x_ghosts, z_source_row
+from ..grid.mesh import Layout
 
 __all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
 
@@ -36,9 +37,12 @@ FILTER_PIECE = 64
 
 
 @njit(cache=True, error_model="numpy")
-def sort_images(m_total, lay, reach, pid, img_src, img_cell, img_w, img_dvy, row_start) -> None:
+def sort_images(m_total, layout, reach, pid, img_src, img_cell, img_w, img_dvy, row_start) -> None:
     """Order the image records by padded row ``(J, K)``, then cell ``I``, then particle id, and
     fill ``row_start`` (``(ny + 2 R_y)(nz + 2 R_z) + 1`` entries) with each row's first record."""
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
     ry, rz = reach[1], reach[2]
     nyr = lay.ny + 2 * ry
     nrow = row_start.shape[0] - 1
@@ -118,7 +122,7 @@ def _add_record(flat, start, I, w_r, wyz, rx, R, nx, vals_r, nv, nvo):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_src,
+def pull_deposit(out, g, layout, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_src,
                  nchunk, clear=False) -> None:
     """Add to the domain cells of ``out`` ``(NZ, NY, NX, nv_out)`` (``g = (gx, gy, gz)`` ghost layers,
     which are left alone) the deposit of the sorted particles and their image records (module
@@ -146,6 +150,9 @@ def pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, col, img_
     canonical order, whatever the chunks (the weights and values of a record are read once for
     the up to ``(2R_z + 1)(2R_y + 1)`` rows it reaches, not once per row).
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     rx, ry, rz = reach[0], reach[1], reach[2]
     gx, gy, gz = g[0], g[1], g[2]

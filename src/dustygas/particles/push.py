@@ -17,8 +17,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .drag import (FIXED, MAX_SPECIES, N_COEF, cell_model_decay, one_species_mode, one_species_response, relax_row,
-                   step_coefficients, step_decay, stopping_time)
+from ..grid.mesh import Layout, Offsets, Spacing
+from .drag import (FIXED, MAX_SPECIES, N_COEF, Species, cell_model_decay, one_species_mode, one_species_response,
+                   relax_row, step_coefficients, step_decay, stopping_time)
 from .terms import ForceTable, frame_acceleration
 
 __all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "dust_values",
@@ -66,8 +67,8 @@ def dust_values(pos, vel, species, mass, n, inv_vol, momentum, shear_rate, back,
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, off, dep, nsp, sp_tab, ft, mesh_field,
-                      shear_rate, feedback, traj, gt, c_rho, c_mesh, k_lo, k_hi) -> None:
+def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, layout, spacing, offsets, dep, nsp, species_table,
+                      forces, mesh_field, shear_rate, feedback, traj, gt, c_rho, c_mesh, k_lo, k_hi) -> None:
     """The trajectory field of the domain cells of rows ``k_lo .. k_hi-1`` (columns
     :func:`trajectory_columns`).
 
@@ -78,12 +79,19 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, lay, sp, off, de
     density and momentum per species (with ``feedback``; velocities relative to the shear,
     :func:`dust_values`). ``shear_rate``: ``q Ω`` if the gas stores full velocities, else 0;
     the local problem is solved in the velocities relative to the shear, ``u_y + q Ω x``
-    (periodic across a shearing box), with ``ft`` the forces of that frame
+    (periodic across a shearing box), with ``forces`` the forces of that frame
     (:func:`shear_frame_forces`): there the drift of a uniform dust through uniform gas
     (NSH) has constant velocities, A = 0 and B_k = 0. ``traj`` has ``gt = (gx, gy, gz)`` ghost
-    layers (filled later). ``sp``, ``off``: the whole mesh's spacing and the block's offsets
+    layers (filled later). ``spacing``, ``offsets``: the whole mesh's spacing and the block's offsets
     (cell centres ``x0 + (i0 + i + 1/2) dx``, those of the whole mesh bit for bit).
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    off = Offsets(*offsets)
+    sp_tab = Species(*species_table)
+    ft = ForceTable(*forces)
     nx, ny = lay.nx, lay.ny
     gx, gy, gz = gas_g
     tx, ty, tz = gt
@@ -241,13 +249,13 @@ def gather_drag(flat, wts, p, R, base, nyt, nxt, rcol, rx, ry, rz):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_rho, c_mesh, sp_tab, coef, ft,
-         shear_rate, h, inv_vol, active, values, budget, vmax, work):
+def kick(pos, vel, species, mass, n, keys, wts, R, reach, layout, spacing, traj, gt, c_rho, c_mesh, species_table, coef,
+         forces, shear_rate, h, inv_vol, active, values, budget, vmax, work):
     """Gather, velocity update and second half drift of particles ``0 .. n-1`` (module docstring).
 
     ``pos`` holds ``x^{n+1/2}`` and becomes ``x^{n+1}``; ``vel`` ``v^n`` -> ``v^{n+1}``. The
     update integrates the velocity relative to the shear, ``w_y = v_y + shear_rate x`` (taken
-    at ``x^n`` and ``x^{n+1}``), with the forces ``ft`` of that frame (:func:`shear_frame_forces`)
+    at ``x^n`` and ``x^{n+1}``), with the forces ``forces`` of that frame (:func:`shear_frame_forces`)
     against the trajectory field, which holds the gas's ``u_y + shear_rate x``: a particle
     drifting radially at a constant ``w`` (NSH) is then a fixed point, where integrating ``v_y``
     with the gas velocity held at ``x^{n+1/2}`` is not (its ``v_y`` changes linearly in time).
@@ -267,6 +275,12 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, lay, sp, traj, gt, c_r
     vx, vy, vz
         The largest ``|v_d|`` along each axis over the particles (0 without particles).
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    sp_tab = Species(*species_table)
+    ft = ForceTable(*forces)
     nx, ny = lay.nx, lay.ny
     tx, ty, tz = gt
     rx, ry, rz = reach[0], reach[1], reach[2]

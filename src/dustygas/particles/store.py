@@ -29,6 +29,7 @@ from numba import njit, prange
 
 from ..arrays import serial_full
 from ..errors import SetupError
+from ..grid.mesh import Layout, Offsets, Spacing
 from .interp import axis_cell, stencil_into
 
 __all__ = ["ParticleStore", "compact", "sort_by_cell"]
@@ -186,7 +187,7 @@ def _cell_key(pos, p, sp, ix, iy, iz, off, nx, ny, nz):
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr, cell_start, fwork, iwork,
+def sort_by_cell(pos, vel, species, pid, mass, n, layout, spacing, offsets, keys, order, ptr, cell_start, fwork, iwork,
                  kernel, R, wts) -> int:
     """Put particles ``0 .. n-1`` into canonical order (module docstring), fill ``cell_start``
     and the weights ``wts`` ``(>= n, 3, 2R + 1)`` of assignment function ``kernel`` (code of
@@ -195,7 +196,7 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     particle whose position or velocity is not finite (then nothing is sorted nor weighed:
     the cell search assumes finite positions, a NaN never finds its cell).
 
-    ``lay``, ``sp``, ``off``: the block (:mod:`dustygas.grid.mesh`; ``sp.x0`` the global origin).
+    ``layout``, ``spacing``, ``offsets``: the block (:mod:`dustygas.grid.mesh`; ``spacing.x0`` the global origin).
     ``keys``, ``order`` are int64 work arrays of length >= n, ``ptr`` one of length ncell;
     ``cell_start`` has ``ncell + 1`` entries (``cell_start[c] .. cell_start[c+1]`` are the particles of domain cell ``c``);
     ``fwork`` (7, >= n) float and ``iwork`` (3, >= n) int64 hold the permuted arrays (one gather
@@ -205,6 +206,11 @@ def sort_by_cell(pos, vel, species, pid, mass, n, lay, sp, off, keys, order, ptr
     sum are serial (``O(N + ncell)``); computing the keys and checking the order, permuting the
     arrays, ordering each cell by ``pid`` and weighing run in parallel.
     """
+    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
+    # statement each, or numba's parallel loops cannot find the class that builds them
+    lay = Layout(*layout)
+    sp = Spacing(*spacing)
+    off = Offsets(*offsets)
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     ncell = nx * ny * nz
     ix, iy, iz = 1.0 / sp.dx, 1.0 / sp.dy, 1.0 / sp.dz
