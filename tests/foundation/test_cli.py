@@ -1,5 +1,7 @@
 """The command line: one-line errors with exit status 2 that leave nothing on disk."""
 
+import re
+
 import pytest
 
 from ._cli import cli
@@ -47,6 +49,10 @@ def test_run_writes_run_directory(tmp_path):
     for name in ("config.toml", "log.txt", "history.h5", "snapshots/snap_00000.h5", "snapshots/snap_00002.h5"):
         assert (out / name).exists(), name
     assert "throughput=" in proc.stderr and "particle-updates/s" in proc.stderr
+    # the first step's time is a part of the loop's (both printed to four and three digits)
+    wall = float(re.search(r"wall=([0-9.e+-]+)s", proc.stderr).group(1))
+    first = float(re.search(r"first_step=([0-9.e+-]+)s", proc.stderr).group(1))
+    assert 0 < first <= wall * 1.001
     assert "version" in (out / "config.toml").read_text()
     # a second run into the same directory is refused without touching it
     before = sorted(p.name for p in out.rglob("*"))

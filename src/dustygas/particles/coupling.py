@@ -239,8 +239,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         # weights, cell centres and the periodic images are those of the whole box
         self._lay, self._sp, self._off = m.layout, Spacing(*m.dx, *m.origin, *m.size), m.offsets
         # the kernels' named-tuple arguments as plain tuples: numba types a plain tuple in C at
-        # every call and a named one in Python (~0.6 µs each, 22 in a linA step; the kernels
-        # rebuild the named tuple, dustygas.grid.mesh)
+        # every call and a named one in Python (~0.6 µs each; the kernels rebuild the named
+        # tuple, dustygas.grid.mesh)
         self._lay_t, self._sp_t, self._off_t = tuple(self._lay), tuple(self._sp), tuple(self._off)
         self._species_t, self._ft_t = tuple(self.species), tuple(self._frame_forces)
         self._remap = gas.remap_codes
