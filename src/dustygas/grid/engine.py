@@ -23,12 +23,12 @@ import numba
 import numpy as np
 
 from ..errors import SetupError, SimulationError, UserError
-from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, Boundaries, fill_ghosts, make_boundaries
+from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, fill_ghosts, make_boundaries
 from .budget import budget_offsets, budget_rows_from, budget_totals
 from .ctu import ctu_stage, ctu_work
 from .diagnostics import domain_sums, max_signal_rate
 from .integrator import INTEGRATORS, advance_gas, courant_limit, integrator_tables
-from .mesh import Mesh
+from .mesh import KernelTuple, Mesh
 from .reconstruct import LIMITERS, RECONSTRUCTIONS, STENCIL_DEPTH
 from .riemann import RIEMANN_SOLVERS
 from .shearing_box import (periodic_tidal_lever, periodic_tidal_potential, shear_offset, shear_velocity_jump,
@@ -118,6 +118,8 @@ class GridEngine:
     """
 
     work_label = "zone-cycles"
+    # the records the stages take, each with its plain tuple (``_layout_t`` ...: dustygas.grid.mesh)
+    _layout, _spacing, _sources, _bc = KernelTuple(), KernelTuple(), KernelTuple(), KernelTuple()
 
     def __init__(
         self,
@@ -178,10 +180,6 @@ class GridEngine:
             scale_height=cs / omega if vertical_gravity and omega > 0 else 0.0,
         )._replace(z_origin=float(mesh.origin[2]), z_first=int(mesh.offsets.k0))
         self._oa_rate = q * omega if self.orbital_advection and mesh.active[1] else 0.0
-        # the stages' named-tuple arguments as plain tuples (numba types a named one in Python at
-        # every call, ~0.6 µs each; the kernels rebuild them, dustygas.grid.mesh)
-        self._layout_t, self._spacing_t = tuple(self._layout), tuple(self._spacing)
-        self._sources_t = tuple(self._sources)  # (and the boundaries': _bc_t)
         # v_y(full) = v_y(stored) - to_full x ;  v_y(relative to shear) = v_y(stored) + to_relative x
         self._to_full = q * omega if self.orbital_advection else 0.0
         self._to_relative = 0.0 if self.orbital_advection else q * omega
@@ -301,15 +299,6 @@ class GridEngine:
                 state={"rho": rho, "vx": vx, "vy": vy, "vz": vz},
             )
         return self.cfl / self._rate
-
-    @property
-    def _bc(self) -> Boundaries:
-        """The gas boundaries (kept with their plain tuple, :attr:`_bc_t`, that the stages take)."""
-        return self._bc_named
-
-    @_bc.setter
-    def _bc(self, value: Boundaries) -> None:
-        self._bc_named, self._bc_t = value, tuple(value)
 
     def advance(self, dt: float) -> None:
         """One step of the configured integrator (fused: one call into compiled code)."""

@@ -20,7 +20,7 @@ named tuple in their first line (``lay = Layout(*layout)``, free once compiled; 
 passed in works too). numba's dispatcher types a plain tuple in C at every call but a named
 one in Python, about 0.6 µs each: the 32 named tuples of a linA step (16 kernel calls) took
 41 µs of its dispatch, plain 23 µs -- serial time, which two threads cannot halve
-(2026-12-05, benchmarks/RESULTS.md). The engines keep both forms, the named one for Python.
+(2026-12-05, benchmarks/RESULTS.md). The engines keep both forms (:class:`KernelTuple`).
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ import numpy as np
 
 from ..errors import SetupError
 
-__all__ = ["Mesh", "Layout", "Spacing", "Offsets", "NGHOST", "cell_average_factor"]
+__all__ = ["Mesh", "Layout", "Spacing", "Offsets", "KernelTuple", "NGHOST", "cell_average_factor"]
 
 #: Ghost cells per side in every active dimension: PPM reconstruction in the corrector needs
 #: three (the interface value at the first face uses four cells on each side of the parabola).
@@ -77,6 +77,30 @@ class Offsets(NamedTuple):
     NX: int
     NY: int
     NZ: int
+
+
+class KernelTuple:
+    """An engine attribute holding a named tuple that kernels take (module docstring): setting
+    ``engine.name`` also sets ``engine.name_t``, the plain tuple of its fields, which the step
+    passes to the kernels; a replaced record (a decomposed run's boundaries) renews both.
+
+    >>> class Engine:
+    ...     layout = KernelTuple()
+    >>> e = Engine()
+    >>> e.layout = Layout(4, 1, 4, 3, 0, 3)
+    >>> e.layout.nx, e.layout_t
+    (4, (4, 1, 4, 3, 0, 3))
+    """
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name, self.plain = name, name + "_t"
+
+    def __get__(self, obj, objtype=None):
+        return self if obj is None else obj.__dict__[self.name]
+
+    def __set__(self, obj, value: tuple) -> None:
+        obj.__dict__[self.name] = value
+        obj.__dict__[self.plain] = tuple(value)
 
 
 def cell_average_factor(k, dx) -> float:

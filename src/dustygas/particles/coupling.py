@@ -61,7 +61,7 @@ import numpy as np
 
 from ..errors import SetupError, SimulationError
 from ..grid.field_ghosts import fill_field_ghosts, field_ghost_kinds
-from ..grid.mesh import Spacing
+from ..grid.mesh import KernelTuple, Spacing
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, make_particle_boundaries
 from .density import deposit_density
@@ -143,6 +143,9 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
     """
 
     work_label = "zone-cycles"
+    # the records the kernels take, each with its plain tuple (``_lay_t`` ...: dustygas.grid.mesh)
+    _lay, _sp, _off, _pb = KernelTuple(), KernelTuple(), KernelTuple(), KernelTuple()
+    species, _frame_forces = KernelTuple(), KernelTuple()
 
     def __init__(
         self,
@@ -238,11 +241,6 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         # the spacing of the whole mesh (origin, box) and the block's offsets: particle cells and
         # weights, cell centres and the periodic images are those of the whole box
         self._lay, self._sp, self._off = m.layout, Spacing(*m.dx, *m.origin, *m.size), m.offsets
-        # the kernels' named-tuple arguments as plain tuples: numba types a plain tuple in C at
-        # every call and a named one in Python (~0.6 µs each; the kernels rebuild the named
-        # tuple, dustygas.grid.mesh)
-        self._lay_t, self._sp_t, self._off_t = tuple(self._lay), tuple(self._sp), tuple(self._off)
-        self._species_t, self._ft_t = tuple(self.species), tuple(self._frame_forces)
         self._remap = gas.remap_codes
         # kernel, reach and field arrays
         self._order = KERNELS[kernel]
@@ -305,15 +303,6 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
                 term.bind(self)
 
     # ------------------------------------------------------------------ set-up helpers
-    @property
-    def _pb(self) -> ParticleBoundaries:
-        """The particle boundaries (kept with their plain tuple, :attr:`_pb_t`, that the kernels take)."""
-        return self._pb_named
-
-    @_pb.setter
-    def _pb(self, value: ParticleBoundaries) -> None:
-        self._pb_named, self._pb_t = value, tuple(value)
-
     def _allocate(self, capacity: int) -> None:
         W = 2 * self._R + 1
         self._keys = np.zeros(capacity, dtype=np.int64)
@@ -537,15 +526,15 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             self._mesh_field[...] = self._mesh_term.field
         if mine[1] > mine[0]:
             cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay_t, self._sp_t,
-                              self._off_t, self._dep1, self.nspecies, self._species_t, self._ft_t, self._mesh_field,
+                              self._off_t, self._dep1, self.nspecies, self.species_t, self._frame_forces_t, self._mesh_field,
                               self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
                               mine[1])
         traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows, nthreads)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)
         self._vmax = kick(pos, vel, species, mass, n, self._keys, self._wts, self._R, self._reach, self._lay_t,
-                          self._sp_t, traj, self._gt, self._c_rho, self._c_mesh, self._species_t, self._coef,
-                          self._ft_t, self._shear_rate, h, self._inv_vol, self._active, self._values,
+                          self._sp_t, traj, self._gt, self._c_rho, self._c_mesh, self.species_t, self._coef,
+                          self._frame_forces_t, self._shear_rate, h, self._inv_vol, self._active, self._values,
                           self.terms_rows, self._vmax_work, self._fwork)
         if self.feedback:
             self._kicked(n)
