@@ -542,7 +542,8 @@ def run_engine(
             label = result.work_label or "updates"
             rundir.log(
                 f"{result.status}: time={engine.t:.6g} cycles={result.cycles} wall={result.wall:.4g}s "
-                f"first_step={result.first_step:.3g}s throughput={result.throughput:.4g} {label}/s threads={result.threads}"
+                f"first_step={result.first_step:.3g}s throughput={result.throughput:.4g} {label}/s "
+                f"threads={result.threads}"
             )
             return result
         finally:

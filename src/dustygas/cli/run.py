@@ -86,7 +86,8 @@ def main(args: argparse.Namespace) -> int:
     label = result.work_label or "updates"
     print(
         f"{result.status}: {result.path}  time={result.engine.t:.6g}  cycles={result.cycles}  "
-        f"wall={result.wall:.4g}s  first_step={result.first_step:.3g}s  throughput={result.throughput:.4g} {label}/s  threads={result.threads}",
+        f"wall={result.wall:.4g}s  first_step={result.first_step:.3g}s  "
+        f"throughput={result.throughput:.4g} {label}/s  threads={result.threads}",
         file=sys.stderr,
     )
     if result.status == "walltime":

@@ -125,8 +125,7 @@ def ctu_stage(states, stage, dt, t, layout, spacing, scheme, terms, bounds, xc, 
     rate, bad
         Stage 1: the Courant rate of ``U^{n+1}`` and its first invalid cell; stage 0: 0, -1.
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     st = SourceTerms(*terms)

@@ -151,8 +151,7 @@ def advance_gas(states, ints, reals, s_lo, s_hi, finish, dt, t, layout, spacing,
         :func:`~dustygas.grid.diagnostics.row_signal_rate` over the new state (0, -1 if
         ``finish`` is False).
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     st = SourceTerms(*terms)

@@ -16,8 +16,10 @@ questions (cell centres, the index of a position).
 The kernels a step calls from Python take these records, and the other named tuples of the
 engines (:class:`~dustygas.grid.boundaries.Boundaries`, the source terms, the particles'
 boundaries, species and force tables), as *plain* tuples of the same fields and rebuild the
-named tuple in their first line (``lay = Layout(*layout)``, free once compiled; a named tuple
-passed in works too). numba's dispatcher types a plain tuple in C at every call but a named
+named tuple in their first lines (``lay = Layout(*layout)``, free once compiled; a named tuple
+passed in works too), one statement each: rebuilt in one tuple assignment, a record used in a
+parallel loop made numba's parfor lowering fail (it looks for the class that built the record
+and finds the unpacking). numba's dispatcher types a plain tuple in C at every call but a named
 one in Python, about 0.6 µs each: the 32 named tuples of a linA step (16 kernel calls) took
 41 µs of its dispatch, plain 23 µs -- serial time, which two threads cannot halve
 (2026-12-05, benchmarks/RESULTS.md). The engines keep both forms (:class:`KernelTuple`).

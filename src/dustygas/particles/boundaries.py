@@ -133,8 +133,7 @@ def apply_boundaries(pos, vel, n, layout, spacing, bounds, y_shift, leaving, hal
     number leaving (the caller accounts and removes them). ``half_dt != 0``: first the drift
     ``x += half_dt v`` along the active axes, in the same pass.
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     pb = ParticleBoundaries(*bounds)
@@ -310,8 +309,7 @@ def build_images(n, layout, spacing, bounds, reach, order, y_shift, keys, wts, p
     particles' domain cells; ``wts`` ``(N, 3, W)`` their weights; ``y_shift`` the shear
     offset at the time of the positions.
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     pb = ParticleBoundaries(*bounds)

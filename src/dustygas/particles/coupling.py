@@ -526,8 +526,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             self._mesh_field[...] = self._mesh_term.field
         if mine[1] > mine[0]:
             cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay_t, self._sp_t,
-                              self._off_t, self._dep1, self.nspecies, self.species_t, self._frame_forces_t, self._mesh_field,
-                              self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
+                              self._off_t, self._dep1, self.nspecies, self.species_t, self._frame_forces_t,
+                              self._mesh_field, self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
                               mine[1])
         traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows, nthreads)
         # 5. particles: gather, update, their drag source, second half drift

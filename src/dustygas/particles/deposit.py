@@ -40,8 +40,7 @@ FILTER_PIECE = 64
 def sort_images(m_total, layout, reach, pid, img_src, img_cell, img_w, img_dvy, row_start) -> None:
     """Order the image records by padded row ``(J, K)``, then cell ``I``, then particle id, and
     fill ``row_start`` (``(ny + 2 R_y)(nz + 2 R_z) + 1`` entries) with each row's first record."""
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     ry, rz = reach[1], reach[2]
     nyr = lay.ny + 2 * ry
@@ -150,8 +149,7 @@ def pull_deposit(out, g, layout, reach, R, cell_start, keys, wts, values, col, i
     canonical order, whatever the chunks (the weights and values of a record are read once for
     the up to ``(2R_z + 1)(2R_y + 1)`` rows it reaches, not once per row).
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     nx, ny, nz = lay.nx, lay.ny, lay.nz
     rx, ry, rz = reach[0], reach[1], reach[2]

@@ -85,8 +85,7 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, layout, spacing,
     layers (filled later). ``spacing``, ``offsets``: the whole mesh's spacing and the block's offsets
     (cell centres ``x0 + (i0 + i + 1/2) dx``, those of the whole mesh bit for bit).
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     off = Offsets(*offsets)
@@ -275,8 +274,7 @@ def kick(pos, vel, species, mass, n, keys, wts, R, reach, layout, spacing, traj,
     vx, vy, vz
         The largest ``|v_d|`` along each axis over the particles (0 without particles).
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     sp_tab = Species(*species_table)

@@ -206,8 +206,7 @@ def sort_by_cell(pos, vel, species, pid, mass, n, layout, spacing, offsets, keys
     sum are serial (``O(N + ncell)``); computing the keys and checking the order, permuting the
     arrays, ordering each cell by ``pid`` and weighing run in parallel.
     """
-    # named tuples may arrive as plain ones (fast to dispatch: dustygas.grid.mesh); one
-    # statement each, or numba's parallel loops cannot find the class that builds them
+    # the records arrive as plain tuples (dustygas.grid.mesh: faster to dispatch)
     lay = Layout(*layout)
     sp = Spacing(*spacing)
     off = Offsets(*offsets)
