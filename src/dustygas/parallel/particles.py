@@ -361,6 +361,10 @@ class BlockParticleEngine(ParticleGridEngine):
             raise SimulationError(f"invalid particle state on another rank at time={self.t:.6g} cycle={self.cycle}")
         self._k_range = (int(-total[0]), int(total[1]))
 
+    def _wrap_images(self) -> bool:
+        """Image records always: the neighbours' particles arrive as records too."""
+        return False
+
     def _add_halo(self, m: int) -> int:
         """The neighbours' records of their boundary rows, as image records beyond the faces."""
         self._agree()

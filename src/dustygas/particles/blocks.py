@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .boundaries import images_wrap
 from .push import occupied_rows
 
 __all__ = ["OneBlock"]
@@ -17,6 +18,11 @@ __all__ = ["OneBlock"]
 
 class OneBlock:
     """The hooks of one block holding the whole box (a mixin of the coupled engine)."""
+
+    def _wrap_images(self) -> bool:
+        """Whether the deposits read the periodic images in place
+        (:func:`~dustygas.particles.boundaries.images_wrap`); a decomposed run builds its records."""
+        return images_wrap(self._pb, self._reach, self.geometry.shape)
 
     def _add_halo(self, m: int) -> int:
         """After the ``m`` image records of a sort: add the records of the neighbouring blocks'

@@ -30,6 +30,8 @@ Two operations use the kinds:
   at their image position, with the y weights recomputed there), for the other kinds the
   mirror image of the particles inside, whose weights fold the part of the stencil beyond
   the face back into the domain -- so every particle deposits exactly its mass and momentum.
+  Where every image would be a particle one box length away with its own weights
+  (:func:`images_wrap`), the deposit reads those particles in place and no records are built.
 """
 
 from __future__ import annotations
@@ -45,7 +47,7 @@ from ..grid.mesh import Layout, Spacing
 from .interp import cell_weights
 
 __all__ = ["PERIODIC", "SHEAR_PERIODIC", "OUTFLOW", "REFLECTING", "PARTICLE_BOUNDARIES", "ParticleBoundaries",
-           "make_particle_boundaries", "apply_boundaries", "build_images", "wrap_positions"]
+           "make_particle_boundaries", "apply_boundaries", "build_images", "images_wrap", "wrap_positions"]
 
 PERIODIC, SHEAR_PERIODIC, OUTFLOW, REFLECTING = 0, 1, 2, 3
 #: name -> code of the particle boundary kinds
@@ -94,6 +96,21 @@ def make_particle_boundaries(kinds: tuple[str, str, str], gas_kinds: tuple[str, 
                              f"can only be {' or '.join(allowed)}")
         codes.append(PARTICLE_BOUNDARIES[name])
     return ParticleBoundaries(*codes, float(q_omega_lx), float(jump))
+
+
+def images_wrap(bounds: ParticleBoundaries, reach, shape: tuple[int, int, int]) -> bool:
+    """Whether every image record would be a domain particle one box length away with its own
+    weights: every axis the stencil reaches (``reach[a] > 0``) periodic, at least ``reach[a]``
+    cells long and bordering no other block, and the radial images not sliding along y (a
+    shear-periodic x only with ``ny = 1``). The deposit then reads those particles in place
+    (:func:`~dustygas.particles.deposit.pull_deposit` with ``wrap``) and :func:`build_images`
+    is not needed.
+    """
+    kinds = (bounds.x, bounds.y, bounds.z)
+    for a in range(3):
+        if reach[a] > 0 and (kinds[a] not in (PERIODIC, SHEAR_PERIODIC) or shape[a] < reach[a]):
+            return False
+    return bounds.neighbours == 0 and not (reach[0] > 0 and bounds.x == SHEAR_PERIODIC and shape[1] > 1)
 
 
 @njit(cache=True, error_model="numpy")
@@ -231,7 +248,7 @@ def _images_along(axis, m0, m1, n, lay, sp, pb, reach, order, y_shift, keys, wts
         if t < nslab * other:
             sl = t // other
             q = t % other
-            s_idx = sl if sl < R else nn - 2 * R + sl
+            s_idx = sl if sl < R or nslab == nn else nn - 2 * R + sl  # (a box shorter than 2R: every slab)
             if axis == 0:
                 c = (q // ny * ny + q % ny) * nx + s_idx
             elif axis == 1:

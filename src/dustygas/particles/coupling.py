@@ -63,7 +63,7 @@ from ..errors import SetupError, SimulationError
 from ..grid.field_ghosts import fill_field_ghosts, field_ghost_kinds
 from ..grid.mesh import KernelTuple, Spacing
 from ..physics.drag import epstein_grain_size
-from .boundaries import apply_boundaries, build_images, make_particle_boundaries
+from .boundaries import apply_boundaries, build_images, images_wrap, make_particle_boundaries
 from .density import deposit_density
 from .deposit import filter_field, filter_field_xz, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
@@ -289,6 +289,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self.gas_terms_rows = np.zeros((nz * ny, 3))
         self._allocate(max(particles.capacity, 1))
         self._images = 0
+        #: the deposits read the periodic images in place (no image records: :func:`images_wrap`)
+        self._wrap = self._wrap_images()
         #: particles of neighbouring blocks held after the store's own (halo sources; 0 in one block)
         self._n_halo = 0
         #: sorts so far (the outputs sort too: a decomposed run repeats them on its blocks)
@@ -413,6 +415,9 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         if bad >= 0:
             self._stop_nonfinite(bad)  # raises (a block of a decomposed run first tells the others)
             return
+        if self._wrap:
+            self._images = 0
+            return
         shift = self.geometry.shear_offset(t)
         args = (n, self._lay_t, self._sp_t, self._pb_t, self._reach, self._order, shift, self._keys, self._wts, pos,
                 self._cell_start)
@@ -446,7 +451,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         (0: numba's current thread count)."""
         pull_deposit(out, self._ghost_arrays[g], self._lay_t, self._reach, self._R, self._cell_start, self._keys,
                      self._wts, values, cols, self._img_row_start, self._img_cell, self._img_w, self._img_src,
-                     nthreads or numba.get_num_threads(), True)
+                     nthreads or numba.get_num_threads(), True, self._wrap)
 
     def _fill_and_filter(self, field, out, g, t: float, rows: tuple[int, int], nthreads: int) -> np.ndarray:
         """Ghosts and the grid-scale filter of a particle-side field in the domain rows ``rows``

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from .boundaries import build_images, make_particle_boundaries
+from .boundaries import ParticleBoundaries, build_images, images_wrap, make_particle_boundaries
 from .deposit import pull_deposit, sort_images
 from .interp import KERNEL_REACH, KERNELS
 from .store import ParticleStore, sort_by_cell
@@ -20,10 +20,14 @@ __all__ = ["deposit_density"]
 
 def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
                     boundaries: tuple[str, str, str] = ("periodic", "periodic", "periodic"),
-                    shear_offset: float = 0.0) -> np.ndarray:
+                    shear_offset: float = 0.0, wrap: bool | None = None) -> np.ndarray:
     """Mass density ``(nz, ny, nx)`` of particles at ``pos`` (3, N) on ``mesh`` with ``kernel``
     (for set-ups, analyses and tests: the deposit the engine uses, without a gas engine; a
-    ``shear-periodic`` x puts the radial images ``shear_offset`` along y)."""
+    ``shear-periodic`` x puts the radial images ``shear_offset`` along y).
+
+    ``wrap``: read the periodic images in place (None: wherever the boundaries allow,
+    :func:`~dustygas.particles.boundaries.images_wrap`, as the engine does); False builds the
+    image records, as a decomposed run does. Both give the same bits."""
     pos = np.asarray(pos, dtype=np.float64)
     n = pos.shape[1]
     store = ParticleStore.create(pos, np.zeros((3, n)), 0, mass)
@@ -42,6 +46,22 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
     wts = np.zeros((n, 3, 2 * R + 1))
     sort_by_cell(p_, v_, s_, i_, m_, n, lay, sp, off, keys, np.zeros(n, dtype=np.int64), np.zeros(ncell, dtype=np.int64),
                  cell_start, np.zeros((7, n)), np.zeros((3, n), dtype=np.int64), order, R, wts)
+    values = (m_[:n] / mesh.cell_volume).reshape(n, 1).copy()
+    cols = np.zeros(n, dtype=np.int64)
+    out = np.zeros((nz, ny, nx, 1))
+    g = np.zeros(3, dtype=np.int64)
+    allowed = images_wrap(ParticleBoundaries(*pb), reach, (nx, ny, nz))
+    if wrap and not allowed:
+        raise ValueError(f"wrap=True: the images of the boundaries {tuple(boundaries)} on a {nx}x{ny}x{nz} mesh "
+                         f"are not the particles one box length away (images_wrap)")
+    if wrap is None:
+        wrap = allowed
+    if wrap:
+        none = np.zeros((0, 3, 2 * R + 1))
+        pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, cols, np.zeros(1, dtype=np.int64),
+                     np.zeros((0, 3), dtype=np.int64), none, np.zeros(0, dtype=np.int64), numba.get_num_threads(),
+                     False, True)
+        return out[..., 0]
     args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
     cap = max(16, n // 2)
     while True:
@@ -53,9 +73,6 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
         cap = 2 * m
     row_start = np.zeros((ny + 2 * reach[1]) * (nz + 2 * reach[2]) + 1, dtype=np.int64)
     sort_images(m, lay, reach, i_, img_src, img_cell, img_w, img_dvy, row_start)
-    values = (m_[:n] / mesh.cell_volume).reshape(n, 1).copy()
-    cols = np.zeros(n, dtype=np.int64)
-    out = np.zeros((nz, ny, nx, 1))
-    pull_deposit(out, np.zeros(3, dtype=np.int64), lay, reach, R, cell_start, keys, wts, values, cols, row_start,
+    pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, cols, row_start,
                  img_cell, img_w, img_src, numba.get_num_threads())
     return out[..., 0]

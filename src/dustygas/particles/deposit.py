@@ -12,7 +12,10 @@ particle id; :mod:`dustygas.particles.store`), the image records beyond the face
 (:func:`~dustygas.particles.boundaries.build_images`) taking their place in that order. No two
 threads write the same cell, and a cell's sum is the same whatever the number of threads and
 whatever the split of the box into blocks (a neighbour's particles would be image records in
-the same places). Rows are handed to threads in chunks with the z index varying fastest, so the
+the same places). Where every image is a periodic copy with its source's weights (a periodic
+box, or a shear-periodic x-z box: :func:`~dustygas.particles.boundaries.images_wrap`) no records
+are built: the walk reads the source rows and cells one box length away in their place, in the
+same order. Rows are handed to threads in chunks with the z index varying fastest, so the
 work of a thin dust layer at the midplane is split along y; a chunk walks the source rows that
 reach its rows once, each record adding to all of them (:func:`pull_deposit`).
 
@@ -120,9 +123,27 @@ def _add_record(flat, start, I, w_r, wyz, rx, R, nx, vals_r, nv, nvo):
                         flat[o + np.uint64(c)] += w * vals_r[c]
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _add_particles(flat, p0, p1, c0, nt, t_row, t_sy, t_sz, rowlen, base, col, keys, wts, values, rx, R, nx, nv, nvo):
+    """The sorted particles ``p0 .. p1-1`` of one source row into the ``nt`` target rows
+    ``t_row`` (their y and z weight slots ``t_sy``, ``t_sz``), each from cell ``keys[p] - c0``."""
+    for p in range(p0, p1):
+        for t in range(nt):
+            wyz = wts[p, 1, t_sy[t]] * wts[p, 2, t_sz[t]]
+            if wyz != 0.0:
+                _add_record(flat, t_row[t] * rowlen + base + col[p], keys[p] - c0, wts[p], wyz, rx, R, nx, values[p],
+                            nv, nvo)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def wrapped_index(c, n):
+    """The domain index ``0 .. n-1`` of the cell (or row) ``c``, within one box length ``n`` of the domain."""
+    return c + n if c < 0 else (c - n if c >= n else c)
+
+
 @njit(cache=True, parallel=True, error_model="numpy")
 def pull_deposit(out, g, layout, reach, R, cell_start, keys, wts, values, col, img_row_start, img_cell, img_w, img_src,
-                 nchunk, clear=False) -> None:
+                 nchunk, clear=False, wrap=False) -> None:
     """Add to the domain cells of ``out`` ``(NZ, NY, NX, nv_out)`` (``g = (gx, gy, gz)`` ghost layers,
     which are left alone) the deposit of the sorted particles and their image records (module
     docstring); with ``clear``, set them to the deposit (zeroed first).
@@ -142,6 +163,13 @@ def pull_deposit(out, g, layout, reach, R, cell_start, keys, wts, values, col, i
     nchunk
         Chunks of the domain rows ``(k, j)`` (``r = j nz + k``: z fastest, so that the chunks of a thin
         dust layer split it along y) handed to the threads; any number gives the same sums.
+    wrap
+        Every active axis is periodic without a slide of the images (a shear-periodic x only
+        with ``ny = 1``) and at least ``R`` cells long: the image records are not built (the
+        image arguments are not read); a source row or cell beyond a face is read as the domain
+        row or cell one box length away (:func:`wrapped_index`). An image record of that box
+        has its source's weights and sits, once sorted, where this walk finds the source: the
+        same records in the same order, the same sums to the last bit.
 
     A chunk owns its rows and walks the source rows ``(K, J)`` that reach them in ascending
     order, each record adding to every row of the chunk within its reach: a row receives its
@@ -193,6 +221,17 @@ def pull_deposit(out, g, layout, reach, R, cell_start, keys, wts, values, col, i
                             nt += 1
                 if nt == 0:
                     continue
+                if wrap:  # the source row one box length away; the cells beyond the x faces likewise
+                    c0 = (wrapped_index(K, nz) * ny + wrapped_index(J, ny)) * nx
+                    if rx > 0:  # the cells nx - rx .. nx - 1, as cells -rx .. -1
+                        _add_particles(flat, cell_start[c0 + nx - rx], cell_start[c0 + nx], c0 + nx, nt, t_row, t_sy,
+                                       t_sz, rowlen, base, col, keys, wts, values, rx, R, nx, nv, nvo)
+                    _add_particles(flat, cell_start[c0], cell_start[c0 + nx], c0, nt, t_row, t_sy, t_sz, rowlen, base,
+                                   col, keys, wts, values, rx, R, nx, nv, nvo)
+                    if rx > 0:  # the cells 0 .. rx - 1, as cells nx .. nx + rx - 1
+                        _add_particles(flat, cell_start[c0], cell_start[c0 + rx], c0 - nx, nt, t_row, t_sy, t_sz,
+                                       rowlen, base, col, keys, wts, values, rx, R, nx, nv, nvo)
+                    continue
                 prow = (K + rz) * nyr + J + ry
                 m = img_row_start[prow]
                 mend = img_row_start[prow + 1]
@@ -206,12 +245,8 @@ def pull_deposit(out, g, layout, reach, R, cell_start, keys, wts, values, col, i
                     m += 1
                 if 0 <= J < ny and 0 <= K < nz:
                     c0 = (K * ny + J) * nx
-                    for p in range(cell_start[c0], cell_start[c0 + nx]):
-                        for t in range(nt):
-                            wyz = wts[p, 1, t_sy[t]] * wts[p, 2, t_sz[t]]
-                            if wyz != 0.0:
-                                _add_record(flat, t_row[t] * rowlen + base + col[p], keys[p] - c0, wts[p], wyz,
-                                            rx, R, nx, values[p], nv, nvo)
+                    _add_particles(flat, cell_start[c0], cell_start[c0 + nx], c0, nt, t_row, t_sy, t_sz, rowlen, base,
+                                   col, keys, wts, values, rx, R, nx, nv, nvo)
                 while m < mend:
                     src = img_src[m]
                     for t in range(nt):
