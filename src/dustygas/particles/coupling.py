@@ -279,6 +279,11 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         nyr, nzr = ny + 2 * self._reach[1], nz + 2 * self._reach[2]
         self._img_row_start = np.zeros(nyr * nzr + 1, dtype=np.int64)
         self._img_capacity = 0
+        #: the deposits read the periodic images in place (no image records: :func:`images_wrap`);
+        #: then the record arrays stay empty (a large periodic box would hold a record per fourth particle)
+        self._wrap = self._wrap_images()
+        self._img_src, self._img_cell = np.zeros(0, dtype=np.int64), np.zeros((0, 3), dtype=np.int64)
+        self._img_w, self._img_dvy = np.zeros((0, 3, 2 * R + 1)), np.zeros(0)
         self._vmax_work = np.zeros((PARTICLE_CHUNKS, 3))
         #: time integrals: [mass, p_x, p_y, p_z] that left through each face; per row of cells
         #: ``(k, j)`` (row ``k ny + j``), the momentum the particle terms gave its particles and
@@ -289,8 +294,6 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self.gas_terms_rows = np.zeros((nz * ny, 3))
         self._allocate(max(particles.capacity, 1))
         self._images = 0
-        #: the deposits read the periodic images in place (no image records: :func:`images_wrap`)
-        self._wrap = self._wrap_images()
         #: particles of neighbouring blocks held after the store's own (halo sources; 0 in one block)
         self._n_halo = 0
         #: sorts so far (the outputs sort too: a decomposed run repeats them on its blocks)
@@ -317,7 +320,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._zero_cols = np.zeros(capacity, dtype=np.int64)
         self._leaving = np.zeros(capacity, dtype=np.int64)
         self._capacity = capacity
-        self._grow_images(max(16, capacity // 4))
+        if not self._wrap:
+            self._grow_images(max(16, capacity // 4))
 
     def _grow_images(self, m: int) -> None:
         """Room for ``m`` image records (the present ones kept)."""
@@ -325,7 +329,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
             return
         W = 2 * self._R + 1
         m = max(m, 2 * self._img_capacity)
-        old = (self._img_src, self._img_cell, self._img_w, self._img_dvy) if self._img_capacity else ()
+        old = (self._img_src, self._img_cell, self._img_w, self._img_dvy)
         self._img_src = np.zeros(m, dtype=np.int64)
         self._img_cell = np.zeros((m, 3), dtype=np.int64)
         self._img_w = np.zeros((m, 3, W))
@@ -532,8 +536,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         if mine[1] > mine[0]:
             cell_trajectories(u_old, u_half, self.mesh.ghosts, self._source, pred_dt, h, self._lay_t, self._sp_t,
                               self._off_t, self._dep1, self.nspecies, self.species_t, self._frame_forces_t,
-                              self._mesh_field, self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho, self._c_mesh, mine[0],
-                              mine[1])
+                              self._mesh_field, self._shear_rate, self.feedback, self._traj, self._gt, self._c_rho,
+                              self._c_mesh, mine[0], mine[1])
         traj = self._fill_and_filter(self._traj, self._traj_out, self._gt, t_half, rows, nthreads)
         # 5. particles: gather, update, their drag source, second half drift
         self._step_coefficients(h)

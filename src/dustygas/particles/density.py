@@ -56,23 +56,22 @@ def deposit_density(mesh, pos: np.ndarray, mass, kernel: str = "tsc",
                          f"are not the particles one box length away (images_wrap)")
     if wrap is None:
         wrap = allowed
-    if wrap:
-        none = np.zeros((0, 3, 2 * R + 1))
-        pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, cols, np.zeros(1, dtype=np.int64),
-                     np.zeros((0, 3), dtype=np.int64), none, np.zeros(0, dtype=np.int64), numba.get_num_threads(),
-                     False, True)
-        return out[..., 0]
-    args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
-    cap = max(16, n // 2)
-    while True:
-        img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)
-        img_w, img_dvy = np.zeros((cap, 3, 2 * R + 1)), np.zeros(cap)
-        m = build_images(*args, img_src, img_cell, img_w, img_dvy)
-        if m <= cap:
-            break
-        cap = 2 * m
-    row_start = np.zeros((ny + 2 * reach[1]) * (nz + 2 * reach[2]) + 1, dtype=np.int64)
-    sort_images(m, lay, reach, i_, img_src, img_cell, img_w, img_dvy, row_start)
-    pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, cols, row_start,
-                 img_cell, img_w, img_src, numba.get_num_threads())
+    if wrap:  # the periodic images read in place: no records
+        row_start = np.zeros(1, dtype=np.int64)
+        img_src, img_cell = np.zeros(0, dtype=np.int64), np.zeros((0, 3), dtype=np.int64)
+        img_w = np.zeros((0, 3, 2 * R + 1))
+    else:
+        args = (n, lay, sp, pb, reach, order, float(shear_offset), keys, wts, p_, cell_start)
+        cap = max(16, n // 2)
+        while True:
+            img_src, img_cell = np.zeros(cap, dtype=np.int64), np.zeros((cap, 3), dtype=np.int64)
+            img_w, img_dvy = np.zeros((cap, 3, 2 * R + 1)), np.zeros(cap)
+            m = build_images(*args, img_src, img_cell, img_w, img_dvy)
+            if m <= cap:
+                break
+            cap = 2 * m
+        row_start = np.zeros((ny + 2 * reach[1]) * (nz + 2 * reach[2]) + 1, dtype=np.int64)
+        sort_images(m, lay, reach, i_, img_src, img_cell, img_w, img_dvy, row_start)
+    pull_deposit(out, g, lay, reach, R, cell_start, keys, wts, values, cols, row_start, img_cell, img_w, img_src,
+                 numba.get_num_threads(), False, wrap)
     return out[..., 0]
