@@ -32,7 +32,9 @@ cache -- about 0.1 s on any thread count, start-up like the import that no figur
 includes (until 2026-12-05 it was in every wall time). Before each
 repeat ``benchmarks/_cores.py`` probes whether the two CPUs are two cores or one core's two
 hardware threads (the virtual machine moves between the two; printed per repeat as ``2`` or
-``s``), and 1T/2T is also given over the two-core repeats alone when the repeats differ.
+``s``), and 1T/2T is also given over the two-core repeats alone when the repeats differ, and
+per repeat in the order run, each with its ``2`` or ``s`` (since 2026-12-06: the spread of a
+case's ratio is mostly the placement of the two CPUs, which changes between repeats).
 
 Run alone::
 
@@ -153,6 +155,9 @@ def main() -> None:
                         cells.append(ratio("1T/2T on two cores", [walls["1T"][i] for i in two],
                                            [walls["2T"][i] for i in two]))
                 cells.append("cores per repeat " + "".join("s" if sh else "2" for sh in shared))
+                if "2T" in walls and "1T" in walls:  # each repeat's ratio with its cores, in order
+                    cells.append("1T/2T per repeat " + " ".join(
+                        f"{a / b:.3f}{'s' if sh else '2'}" for a, b, sh in zip(walls["1T"], walls["2T"], shared)))
                 print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}",
                       flush=True)
 
