@@ -33,8 +33,9 @@ includes (until 2026-12-05 it was in every wall time). Before each
 repeat ``benchmarks/_cores.py`` probes whether the two CPUs are two cores or one core's two
 hardware threads (the virtual machine moves between the two; printed per repeat as ``2`` or
 ``s``), and 1T/2T is also given over the two-core repeats alone when the repeats differ, and
-per repeat in the order run, each with its ``2`` or ``s`` (since 2026-12-06: the spread of a
-case's ratio is mostly the placement of the two CPUs, which changes between repeats).
+per repeat in the order run, each with its ``2`` or ``s`` (since 2026-12-06: single repeats of
+si-linA moved by about 0.1 minutes apart, and the two-core repeats were not the better ones, so a
+set's median says more than any repeat).
 
 Run alone::
 
