@@ -312,9 +312,7 @@ class GridEngine:
             self._spacing_t, self._scheme, self._sources_t, self._bc_t, self._xc, self._zc, self._oa_rate, self._no_ext,
             False, self._bflux, self._zflux, self.budget_rows, numba.get_num_threads(),
         )
-        self._check(rate, bad)
-        self.t += dt
-        self.cycle += 1
+        self.finish_step(dt, rate, bad)
 
     @property
     def stage_count(self) -> int:
@@ -376,9 +374,27 @@ class GridEngine:
                 self._oa_rate, ext if use else self._no_ext, use, self._bflux, self._zflux, self.budget_rows, nthreads,
             )
         if stage == nstage - 1:
-            self._check(rate, bad)
-            self.t += dt
-            self.cycle += 1
+            self.finish_step(dt, rate, bad)
+
+    def two_stage_arguments(self) -> tuple | None:
+        """The arguments of :func:`~dustygas.grid.integrator.advance_gas` that do not change from
+        step to step (``states, ints, reals, layout, spacing, scheme, terms, bounds, xc, zc,
+        oa_rate, no_ext, bflux, zflux, budget``) and the states the two stages read, for a caller
+        that runs both VL2 stages inside one compiled function
+        (:func:`~dustygas.particles.step_xz.coupled_step_xz`) and then :meth:`finish_step`; None
+        for an integrator whose stages are not :func:`advance_gas`'s (CTU)."""
+        if self._ctu is not None or self._nstage != 2:
+            return None
+        return (self.states, self._ints, self._reals, self._layout_t, self._spacing_t, self._scheme, self._sources_t,
+                self._bc_t, self._xc, self._zc, self._oa_rate, self._no_ext, self._bflux, self._zflux,
+                self.budget_rows, *self._stage_inputs)
+
+    def finish_step(self, dt: float, rate: float, bad: int) -> None:
+        """After the last stage of a step of ``dt``: its Courant ``rate`` and first ``bad`` cell
+        (checked at the next :meth:`timestep`), the time and the cycle."""
+        self._check(rate, bad)
+        self.t += dt
+        self.cycle += 1
 
     def advance_with_sources(self, dt: float, hook: SourceHook) -> None:
         """One step calling ``hook(stage, U_read, t_stage, dt_stage)`` before each stage.

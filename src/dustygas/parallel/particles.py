@@ -43,6 +43,7 @@ from ..grid.field_ghosts import FIELD_NEIGHBOUR
 from ..particles.boundaries import OUTFLOW, apply_boundaries
 from ..particles.coupling import ParticleGridEngine, add_lost
 from ..particles.interp import axis_cell
+from ..particles.push import padded_rows
 from ..particles.store import sort_by_cell
 from .halo import exchange_both_ways
 
@@ -184,6 +185,8 @@ class BlockParticleEngine(ParticleGridEngine):
     **options
         The serial engine's arguments (:attr:`ParticleGridEngine.options`).
     """
+
+    _whole_box = False  # the compiled whole-box step (particles.step_xz) is not for a block
 
     def __init__(self, gas, particles, comm, cuts, block: int, ranks, periodic_z: bool, **options):
         self.comm = comm
@@ -466,8 +469,7 @@ class BlockParticleEngine(ParticleGridEngine):
 
     def _padded_of(self, b: int, rows: tuple[int, int], gz: int) -> tuple[int, int]:
         """The serial padded rows of ``rows`` in block ``b``'s numbering, clipped to it."""
-        k_lo = rows[0] + gz if rows[0] > 0 else 0
-        k_hi = rows[1] + gz if rows[1] < self._nz else self._nz + 2 * gz
+        k_lo, k_hi = padded_rows(rows, gz, self._nz)
         k0, top = int(self._cuts[b]), self._block_rows_of(b) + 2 * gz
         k_lo, k_hi = min(max(k_lo - k0, 0), top), min(max(k_hi - k0, 0), top)
         return k_lo, max(k_hi, k_lo)

@@ -11,13 +11,16 @@ from __future__ import annotations
 import numpy as np
 
 from .boundaries import images_wrap
-from .push import occupied_rows
+from .push import occupied_rows, padded_rows
 
 __all__ = ["OneBlock"]
 
 
 class OneBlock:
     """The hooks of one block holding the whole box (a mixin of the coupled engine)."""
+
+    #: the engine holds the whole box (a block of a decomposed run: False)
+    _whole_box = True
 
     def _wrap_images(self) -> bool:
         """Whether the deposits read the periodic images in place
@@ -42,10 +45,7 @@ class OneBlock:
     def _padded_rows(self, rows: tuple[int, int], gz: int) -> tuple[int, int]:
         """The padded z rows of a field with ``gz`` ghost layers to fill and filter for the
         domain rows ``rows`` of the whole mesh (with the ghost rows beyond them where they reach a z face)."""
-        nz = self.geometry.shape[2]
-        k_lo = rows[0] + gz if rows[0] > 0 else 0
-        k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
-        return k_lo, k_hi
+        return padded_rows(rows, gz, self.geometry.shape[2])
 
     def _field_halo(self, field: np.ndarray, gz: int) -> None:
         """Fill the z ghost rows of ``field`` that neighbouring blocks hold. One block: none."""

@@ -72,6 +72,7 @@ from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values,
                    shear_frame_forces, trajectory_columns)
 from .outputs import CoupledOutputs
 from .blocks import OneBlock
+from .step_xz import OneCallStep
 from .store import ParticleStore, sort_by_cell
 from .terms import MeshAcceleration, RotatingFrame, add_row_impulse, force_table
 
@@ -98,7 +99,7 @@ def add_lost(lost: np.ndarray, flags: np.ndarray, mass: np.ndarray, vel: np.ndar
                 lost[face, 1 + a] += math.fsum(vel[a, :n][sel] * m)
 
 
-class ParticleGridEngine(CoupledOutputs, OneBlock):
+class ParticleGridEngine(CoupledOutputs, OneBlock, OneCallStep):
     """A two-stage gas engine (VL2) with Lagrangian dust particles (module docstring).
 
     Parameters
@@ -298,6 +299,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._n_halo = 0
         #: sorts so far (the outputs sort too: a decomposed run repeats them on its blocks)
         self.sorts = 0
+        #: whether the steps after the first run as one compiled call (:mod:`dustygas.particles.step_xz`)
+        self.compiled_step = self._one_call_case()
         self.mode = None if mode is None else tuple(int(x) for x in mode)
         self._mode_setup()
         self._check_inside()
@@ -320,6 +323,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         self._zero_cols = np.zeros(capacity, dtype=np.int64)
         self._leaving = np.zeros(capacity, dtype=np.int64)
         self._capacity = capacity
+        self._one_call_args = None  # the compiled step's argument tables (step_xz) hold the old arrays
         if not self._wrap:
             self._grow_images(max(16, capacity // 4))
 
@@ -401,9 +405,14 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
         shift = self.geometry.shear_offset(t)
         count = apply_boundaries(pos, vel, p.n, self._lay_t, self._sp_t, self._pb_t, shift, self._leaving, half_dt)
         if count:
-            flags = self._leaving[:p.n]
-            add_lost(self.lost, flags, p.mass, p.vel, range(6))
-            p.remove(flags == 0)
+            self._remove_leaving()
+
+    def _remove_leaving(self) -> None:
+        """Remove the particles the last exchange flagged as leaving, adding what they carry to :attr:`lost`."""
+        p = self.particles
+        flags = self._leaving[:p.n]
+        add_lost(self.lost, flags, p.mass, p.vel, range(6))
+        p.remove(flags == 0)
 
     def _prepare(self, t: float) -> None:
         """Sort, weights and image records of the particles as they are (positions at ``t``)."""
@@ -495,7 +504,11 @@ class ParticleGridEngine(CoupledOutputs, OneBlock):
                 term.add_source(self, rho, t, out)
 
     def advance(self, dt: float) -> None:
-        """One coupled step (module docstring)."""
+        """One coupled step (module docstring); after the first, one compiled call where it can
+        (:attr:`compiled_step`, :mod:`dustygas.particles.step_xz`)."""
+        if self.compiled_step and (self._have_source or not self.feedback):
+            self._advance_one_call(dt)
+            return
         gas, p = self.gas, self.particles
         h = dt
         t = gas.t

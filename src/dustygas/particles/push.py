@@ -23,7 +23,7 @@ from .drag import (FIXED, MAX_SPECIES, N_COEF, Species, cell_model_decay, one_sp
 from .terms import ForceTable, frame_acceleration
 
 __all__ = ["PARTICLE_CHUNKS", "U0", "ACC", "RESPONSE", "trajectory_columns", "dust_values",
-           "cell_trajectories", "explicit_drag_source", "kick", "copy_domain", "occupied_rows",
+           "cell_trajectories", "explicit_drag_source", "kick", "copy_domain", "occupied_rows", "padded_rows",
            "shear_frame_forces"]
 
 #: particle passes run over this many chunks of the particle range (fixed: sums per chunk do
@@ -459,6 +459,7 @@ def shear_frame_forces(ft: ForceTable, shear_rate: float) -> ForceTable:
     return ft._replace(coriolis_y=ft.coriolis_y - shear_rate, tidal_x=ft.tidal_x - ft.coriolis_x * shear_rate)
 
 
+@njit(cache=True, error_model="numpy")
 def occupied_rows(keys, n: int, nx: int, ny: int, nz: int, margin: int, periodic_z: bool) -> tuple[int, int]:
     """The z rows ``[k_lo, k_hi)`` within ``margin`` of a particle's cell (sorted ``keys``): the
     fields the particles gather and deposit are needed there only. The whole column when the
@@ -471,6 +472,15 @@ def occupied_rows(keys, n: int, nx: int, ny: int, nz: int, margin: int, periodic
     if periodic_z and (lo < 0 or hi > nz):
         return 0, nz
     return max(lo, 0), min(hi, nz)
+
+
+@njit(cache=True, error_model="numpy")
+def padded_rows(rows: tuple[int, int], gz: int, nz: int) -> tuple[int, int]:
+    """The padded z rows ``[k_lo, k_hi)`` of a field with ``gz`` ghost layers that hold the domain
+    rows ``rows`` of a mesh of ``nz`` rows, with the ghost rows beyond them where they reach a z face."""
+    k_lo = rows[0] + gz if rows[0] > 0 else 0
+    k_hi = rows[1] + gz if rows[1] < nz else nz + 2 * gz
+    return k_lo, k_hi
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
