@@ -72,7 +72,8 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
         terms_rows, vmax_work, margin)``.
     gas
         The fixed arguments of :func:`~dustygas.grid.integrator.advance_gas`
-        (:meth:`~dustygas.grid.engine.GridEngine.vl2_arguments`) with ``u_old``, ``u_half``.
+        (:meth:`~dustygas.grid.engine.GridEngine.two_stage_arguments`, which ends with the states
+        ``u_old`` and ``u_half`` the stages read).
     gas_t
         The gas time at the start of the step.
 
@@ -151,7 +152,7 @@ class OneCallStep:
 
     def _one_call_tables(self) -> tuple:
         """The arguments of :func:`coupled_step_xz` that change only when the particle arrays are
-        reallocated (made again after :meth:`_allocate`)."""
+        reallocated (made again after :meth:`_allocate`), and the gas's, which never change."""
         layout = (self._lay_t, self._sp_t, self._off_t, self._pb_t, self._R, self._reach, self.geometry.shape,
                   self._field_kinds, self.mesh.ghosts, self._inv_vol, self._shear_rate, self._leaving)
         sorting = (self._keys, self._order_work, self._ptr, self._cell_start, self._fwork, self._iwork, self._order,
@@ -166,7 +167,7 @@ class OneCallStep:
         fields = (self._values, self._dep1, self._ghost_arrays[(0, 0, 0)], self._source, self._traj, self._traj_out,
                   self._gt, self._dep2, self._dep2_out, self._ghost_arrays[self._g2], self._g2, self.terms_rows,
                   self._vmax_work, margin)
-        return layout, sorting, images, drag, fields
+        return layout, sorting, images, drag, fields, self.gas.two_stage_arguments()  # the gas's arrays are made once
 
     def _advance_one_call(self, dt: float) -> None:
         """:meth:`advance` after the first step, through :func:`coupled_step_xz`."""
@@ -178,11 +179,11 @@ class OneCallStep:
             self._allocate(p.capacity)
         if self._one_call_args is None:
             self._one_call_args = self._one_call_tables()
-        layout, sorting, images, drag, fields = self._one_call_args
+        layout, sorting, images, drag, fields, gas_arrays = self._one_call_args
         shift = self.geometry.shear_offset
         bad, k_lo, k_hi, vmax, rate, bad_gas = coupled_step_xz(
             h, 0.5 * h, gas.stage_weight(0) * h, shift(t + 0.5 * h), shift(t + h), p.n, numba.get_num_threads(),
-            self.feedback, p.buffers(), layout, sorting, images, drag, fields, gas.two_stage_arguments(), t)
+            self.feedback, p.buffers(), layout, sorting, images, drag, fields, gas_arrays, t)
         self._coef_dt = h
         if bad >= 0:
             self._stop_nonfinite(bad)  # raises
