@@ -78,3 +78,26 @@ def test_the_engine_runs_the_python_sequence_where_the_compiled_step_does_not_ap
     for problem, sets in cases:
         prob = get_problem(problem)
         assert not prob.build(prob.config(overrides=sets)).compiled_step, problem
+
+
+def test_the_compiled_step_calls_the_kernels_the_python_sequence_compiled():
+    """The kernels the compiled step calls get no specialization of their own: a constant passed to
+    a kernel inside compiled code is typed as a literal and compiles that kernel again for it
+    (before the flags and stage numbers arrived as run-time values, the two gas stages and the
+    deposit compiled anew: 95 s on a first run)."""
+    from numba.core import types
+
+    import dustygas.particles.step_xz as step_xz
+
+    eng = build("si-linA", SMALL)
+    for _ in range(3):
+        eng.advance(eng.timestep())
+    kernels = [getattr(step_xz, name) for name in ("advance_gas", "apply_boundaries", "cell_trajectories",
+                                                   "copy_domain", "dust_values", "filter_field_xz", "kick",
+                                                   "occupied_rows", "padded_rows", "pull_deposit", "sort_by_cell",
+                                                   "step_coefficients")]
+    for kernel in kernels:
+        assert kernel.signatures, kernel.py_func.__name__
+        for signature in kernel.signatures:
+            literal = [str(t) for t in signature if isinstance(t, types.Literal)]
+            assert not literal, (kernel.py_func.__name__, literal)

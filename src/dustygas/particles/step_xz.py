@@ -40,8 +40,8 @@ __all__ = ["coupled_step_xz", "OneCallStep"]
 
 
 @njit(cache=True, error_model="numpy")
-def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedback, particles, layout, sorting,
-                    images, drag, fields, gas, gas_t):
+def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedback, switches, particles, layout,
+                    sorting, images, drag, fields, gas, gas_t):
     """One coupled step of a whole periodic x–z box.
 
     Parameters
@@ -53,6 +53,11 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
         The shear offsets at ``t + h/2`` and ``t + h`` (the exchanges).
     n, nthreads, feedback
         The particle count, the chunks of the parallel loops and whether the dust drags the gas.
+    switches
+        ``(True, False, 0, 1, 2)``: the flags and stage numbers the kernels take, as values that
+        arrive at run time. Written here as constants, they would be typed as literals, and each
+        kernel they reach would be compiled again for them (the gas stages and the deposit: 95 s
+        on a first run).
     particles
         ``(pos, vel, species, pid, mass)``, the store's whole buffers.
     layout
@@ -85,6 +90,7 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
     corrector's Courant rate and bad cell. No particle leaves a box periodic along both active
     axes, so the exchanges' counts are not returned.
     """
+    yes, no, stage0, stage1, stage2 = switches
     pos, vel, species, pid, mass = particles
     lay, sp, off, bounds, R, reach, dims, kinds, ghosts, inv_vol, shear_rate, leaving = layout
     keys, order_work, ptr, cell_start, fwork, iwork, order, wts = sorting
@@ -102,12 +108,12 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
         return bad, 0, 0, (0.0, 0.0, 0.0), 0.0, -1
     # 2. the dust deposit of the local drag problem
     if feedback:
-        dust_values(pos, vel, species, mass, n, inv_vol, True, shear_rate, back, values, cols)
+        dust_values(pos, vel, species, mass, n, inv_vol, yes, shear_rate, back, values, cols)
         pull_deposit(dep1, ghost1, lay, reach, R, cell_start, keys, wts, values, cols, img_row_start, img_cell, img_w,
-                     img_src, nthreads, True, True)
+                     img_src, nthreads, yes, yes)
     ext = source if feedback else no_ext
     # 3. gas predictor
-    advance_gas(states, ints, reals, 0, 1, False, h, gas_t, gas_layout, gas_spacing, scheme, terms, gas_bounds, xc, zc,
+    advance_gas(states, ints, reals, stage0, stage1, no, h, gas_t, gas_layout, gas_spacing, scheme, terms, gas_bounds, xc, zc,
                 oa_rate, ext, feedback, bflux, zflux, budget, nthreads)
     # 4. the trajectory field, filtered
     rows = occupied_rows(keys, n, dims[0], dims[1], dims[2], margin, kinds[2] == 0)
@@ -124,12 +130,12 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
                 coef, frame_forces, shear_rate, h, inv_vol, active, values, terms_rows, vmax_work, fwork)
     if feedback:
         pull_deposit(dep2, ghost2, lay, reach, R, cell_start, keys, wts, values[:, :3], zero_cols, img_row_start,
-                     img_cell, img_w, img_src, nthreads, True, True)
+                     img_cell, img_w, img_src, nthreads, yes, yes)
         k_lo, k_hi = padded_rows(rows, g2[2], dims[2])
         filter_field_xz(dep2, dep2_out, k_lo, k_hi, npiece, g2[0], g2[2], kinds)
         copy_domain(dep2_out, ghost2, source, 1.0)
     # 6. gas corrector, then the exchange at t + h
-    rate, bad_gas = advance_gas(states, ints, reals, 1, 2, True, h, gas_t, gas_layout, gas_spacing, scheme, terms,
+    rate, bad_gas = advance_gas(states, ints, reals, stage1, stage2, yes, h, gas_t, gas_layout, gas_spacing, scheme, terms,
                                 gas_bounds, xc, zc, oa_rate, ext, feedback, bflux, zflux, budget, nthreads)
     apply_boundaries(pos, vel, n, lay, sp, bounds, end_shift, leaving, 0.0)
     return -1, rows[0], rows[1], vmax, rate, bad_gas
@@ -183,7 +189,7 @@ class OneCallStep:
         shift = self.geometry.shear_offset
         bad, k_lo, k_hi, vmax, rate, bad_gas = coupled_step_xz(
             h, 0.5 * h, gas.stage_weight(0) * h, shift(t + 0.5 * h), shift(t + h), p.n, numba.get_num_threads(),
-            self.feedback, p.buffers(), layout, sorting, images, drag, fields, gas_arrays, t)
+            self.feedback, (True, False, 0, 1, 2), p.buffers(), layout, sorting, images, drag, fields, gas_arrays, t)
         self._coef_dt = h
         if bad >= 0:
             self._stop_nonfinite(bad)  # raises
