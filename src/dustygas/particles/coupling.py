@@ -65,7 +65,7 @@ from ..grid.mesh import KernelTuple, Spacing
 from ..physics.drag import epstein_grain_size
 from .boundaries import apply_boundaries, build_images, images_wrap, make_particle_boundaries
 from .density import deposit_density
-from .deposit import filter_field, filter_field_xz, pull_deposit, sort_images
+from .deposit import filter_field, filter_field_xz, filter_pieces, pull_deposit, sort_images
 from .drag import DRAG_LAWS, EPSTEIN, FIXED, MAX_SPECIES, N_COEF, Species, step_coefficients
 from .interp import KERNEL_REACH, KERNELS
 from .push import (PARTICLE_CHUNKS, cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick,
@@ -247,6 +247,10 @@ class ParticleGridEngine(CoupledOutputs, OneBlock, OneCallStep):
         self._order = KERNELS[kernel]
         R = KERNEL_REACH[self._order]
         self._R = R
+        #: the rows beyond the particles' whose fields a step needs: the deposit reaches R rows beyond a
+        #: particle's and the filter spreads it two more, which the z pass filters only 2 rows inside
+        #: the range: R + 4 (R + 2 loses momentum near a thin layer)
+        self._field_margin = R + (4 if self.smooth else 0)
         self._reach = np.array([R if a else 0 for a in active], dtype=np.int64)
         extra = 2 if self.smooth else 0
         self._gt = tuple(int((R + extra) if a else 0) for a in active)
@@ -474,7 +478,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock, OneCallStep):
         k_lo, k_hi = self._padded_rows(rows, g[2])
         self._field_halo(field, g[2])
         if self._xz:  # the ghosts inside the filter's parallel region
-            filter_field_xz(field, out, k_lo, k_hi, max(1, min(nthreads, 8)), g[0], g[2], self._field_kinds)
+            filter_field_xz(field, out, k_lo, k_hi, filter_pieces(nthreads), g[0], g[2], self._field_kinds)
             return out
         fill_field_ghosts(field, g[0], g[1], g[2], self._field_kinds, shift, *self._remap, k_lo, k_hi)
         if self.smooth:
@@ -537,10 +541,7 @@ class ParticleGridEngine(CoupledOutputs, OneBlock, OneCallStep):
         t_half = t + 0.5 * h
         # 4. the trajectory field
         pred_dt = gas.stage_weight(0) * h
-        # the deposit reaches R rows beyond a particle's and the filter spreads it two more, which the
-        # z pass filters only 2 rows inside the range: R + 4 (R + 2 loses momentum near a thin layer)
-        margin = self._R + (4 if self.smooth else 0)
-        rows = self._occupied_rows(n, margin)
+        rows = self._occupied_rows(n, self._field_margin)
         self.field_rows = rows
         mine = self._block_rows(rows)
         if self._mesh_term is not None:

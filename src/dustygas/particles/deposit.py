@@ -31,7 +31,7 @@ from numba import njit, prange
 from ..grid.field_ghosts import row_x_ghosts, z_source_row
 from ..grid.mesh import Layout
 
-__all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "ROW_CHUNKS"]
+__all__ = ["sort_images", "pull_deposit", "filter_field", "filter_field_xz", "filter_pieces", "ROW_CHUNKS"]
 
 #: the filter's planes are split into this many chunks for the threads (more than threads: a balanced split)
 ROW_CHUNKS = 64
@@ -356,6 +356,13 @@ def _copy_into(src, dst, n):
     """``dst[0 .. n-1] = src[0 .. n-1]``."""
     for q in range(n):
         dst[q] = src[q]
+
+
+@njit(cache=True, error_model="numpy")
+def filter_pieces(nthreads: int) -> int:
+    """The pieces of rows :func:`filter_field_xz` splits a field into on ``nthreads`` threads (at
+    most 8: each piece copies its neighbours' boundary rows)."""
+    return max(1, min(nthreads, 8))
 
 
 @njit(cache=True, parallel=True, error_model="numpy")

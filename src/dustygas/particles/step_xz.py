@@ -31,7 +31,7 @@ from numba import njit
 
 from ..grid.integrator import advance_gas
 from .boundaries import apply_boundaries
-from .deposit import filter_field_xz, pull_deposit
+from .deposit import filter_field_xz, filter_pieces, pull_deposit
 from .drag import step_coefficients
 from .push import cell_trajectories, copy_domain, dust_values, kick, occupied_rows, padded_rows
 from .store import sort_by_cell
@@ -113,14 +113,14 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
                      img_src, nthreads, yes, yes)
     ext = source if feedback else no_ext
     # 3. gas predictor
-    advance_gas(states, ints, reals, stage0, stage1, no, h, gas_t, gas_layout, gas_spacing, scheme, terms, gas_bounds, xc, zc,
-                oa_rate, ext, feedback, bflux, zflux, budget, nthreads)
+    advance_gas(states, ints, reals, stage0, stage1, no, h, gas_t, gas_layout, gas_spacing, scheme, terms, gas_bounds,
+                xc, zc, oa_rate, ext, feedback, bflux, zflux, budget, nthreads)
     # 4. the trajectory field, filtered
     rows = occupied_rows(keys, n, dims[0], dims[1], dims[2], margin, kinds[2] == 0)
     if rows[1] > rows[0]:
         cell_trajectories(u_old, u_half, ghosts, source, pred_dt, h, lay, sp, off, dep1, nspecies, species_table,
                           frame_forces, mesh_field, shear_rate, feedback, traj, gt, c_rho, c_mesh, rows[0], rows[1])
-    npiece = max(1, min(nthreads, 8))
+    npiece = filter_pieces(nthreads)
     k_lo, k_hi = padded_rows(rows, gt[2], dims[2])
     filter_field_xz(traj, traj_out, k_lo, k_hi, npiece, gt[0], gt[2], kinds)
     # 5. particles: gather, update, drag source, second half drift
@@ -135,8 +135,8 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
         filter_field_xz(dep2, dep2_out, k_lo, k_hi, npiece, g2[0], g2[2], kinds)
         copy_domain(dep2_out, ghost2, source, 1.0)
     # 6. gas corrector, then the exchange at t + h
-    rate, bad_gas = advance_gas(states, ints, reals, stage1, stage2, yes, h, gas_t, gas_layout, gas_spacing, scheme, terms,
-                                gas_bounds, xc, zc, oa_rate, ext, feedback, bflux, zflux, budget, nthreads)
+    rate, bad_gas = advance_gas(states, ints, reals, stage1, stage2, yes, h, gas_t, gas_layout, gas_spacing, scheme,
+                                terms, gas_bounds, xc, zc, oa_rate, ext, feedback, bflux, zflux, budget, nthreads)
     apply_boundaries(pos, vel, n, lay, sp, bounds, end_shift, leaving, 0.0)
     return -1, rows[0], rows[1], vmax, rate, bad_gas
 
@@ -169,10 +169,9 @@ class OneCallStep:
                 self._mesh_field, self._cols, self._zero_cols, self._active,
                 np.array([s for s, _ in fixed], dtype=np.int64), np.array([ts for _, ts in fixed], dtype=np.float64),
                 float(self.forces.gravity_z))
-        margin = self._R + 4  # as the Python step's (the filter is on in this case)
         fields = (self._values, self._dep1, self._ghost_arrays[(0, 0, 0)], self._source, self._traj, self._traj_out,
                   self._gt, self._dep2, self._dep2_out, self._ghost_arrays[self._g2], self._g2, self.terms_rows,
-                  self._vmax_work, margin)
+                  self._vmax_work, self._field_margin)
         return layout, sorting, images, drag, fields, self.gas.two_stage_arguments()  # the gas's arrays are made once
 
     def _advance_one_call(self, dt: float) -> None:
