@@ -23,7 +23,9 @@ import sys
 #: below this vector gain the two CPUs share one core's vector units
 SHARED_BELOW = 1.2
 
-PROBE = """
+#: the vectorised loop and its two-thread gain (best of ``rounds`` calls of ``reps`` passes per thread
+#: count); the source is run in a fresh process here and inside bench_machine's stepping process
+VECTOR_PROBE = """
 import time, numba, numpy as np
 from numba import njit, prange
 @njit(parallel=True, fastmath=True)
@@ -35,15 +37,18 @@ def vector(x, reps):
                 y[i] = y[i] * 0.9999999 + 1e-7
 x = np.ones((2, 1024))
 vector(x, 1)
-best = {}
-for n in (1, 2, 1, 2):
-    numba.set_num_threads(n)
-    for _ in range(8):
-        t0 = time.perf_counter()
-        vector(x, 20000)
-        best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
-print(best[1] / best[2])
+def vector_probe(reps, rounds):
+    best = {}
+    for n in (1, 2, 1, 2):
+        numba.set_num_threads(n)
+        for _ in range(rounds):
+            t0 = time.perf_counter()
+            vector(x, reps)
+            best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
+    return best[1] / best[2]
 """
+
+PROBE = VECTOR_PROBE + "print(vector_probe(20000, 8))\n"
 
 
 def vector_gain() -> float:

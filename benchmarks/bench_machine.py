@@ -34,7 +34,7 @@ import sys
 import time
 from pathlib import Path
 
-from _cores import describe, vector_gain
+from _cores import VECTOR_PROBE, describe, vector_gain
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -62,28 +62,9 @@ while time.perf_counter() < end:
     print(n / (time.perf_counter() - t0))
 """
 
-STEPS = """
-import sys, time, numba, numpy as np
-from numba import njit, prange
+STEPS = VECTOR_PROBE + """
+import sys
 from dustygas.api import _get_problem, build_engine
-@njit(parallel=True, fastmath=True)
-def vector(x, reps):  # the probe of _cores.py, in this process
-    for c in prange(2):
-        y = x[c]
-        for r in range(reps):
-            for i in range(y.size):
-                y[i] = y[i] * 0.9999999 + 1e-7
-def probe():
-    best = {}
-    for n in (1, 2, 1, 2):
-        numba.set_num_threads(n)
-        for _ in range(3):
-            t0 = time.perf_counter()
-            vector(x, 4000)
-            best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
-    return best[1] / best[2]
-x = np.ones((2, 1024))
-vector(x, 1)
 problem = _get_problem("si-linA")
 engine = build_engine(problem, problem.config([], [], None))
 for t in (1, 2):
@@ -92,7 +73,7 @@ for t in (1, 2):
         engine.advance(engine.timestep())
 steps = int(sys.argv[1])
 for pair in range(int(sys.argv[2])):
-    before = probe()
+    before = vector_probe(4000, 3)
     seconds = {}
     for t in ((1, 2) if pair % 2 == 0 else (2, 1)):
         numba.set_num_threads(t)
@@ -100,7 +81,7 @@ for pair in range(int(sys.argv[2])):
         for _ in range(steps):
             engine.advance(engine.timestep())
         seconds[t] = (time.perf_counter() - t0) / steps
-    print(min(before, probe()), seconds[1], seconds[2])
+    print(min(before, vector_probe(4000, 3)), seconds[1], seconds[2])
 """
 
 
