@@ -508,9 +508,9 @@ class ParticleGridEngine(CoupledOutputs, OneBlock, OneCallStep):
                 term.add_source(self, rho, t, out)
 
     def advance(self, dt: float) -> None:
-        """One coupled step (module docstring); after the first, one compiled call where it can
+        """One coupled step (module docstring); one compiled call where it can
         (:attr:`compiled_step`, :mod:`dustygas.particles.step_xz`)."""
-        if self.compiled_step and (self._have_source or not self.feedback):
+        if self.compiled_step:
             self._advance_one_call(dt)
             return
         gas, p = self.gas, self.particles
@@ -531,8 +531,8 @@ class ParticleGridEngine(CoupledOutputs, OneBlock, OneCallStep):
                         self._values, self._cols)
             self._deposit(self._dep1, (0, 0, 0), self._values, self._cols, nthreads)
             if not self._have_source:  # first step: the drag at t^n (a steady drift stays a fixed point)
-                explicit_drag_source(u_old, self.mesh.ghosts, self._sp, self._off, self._shear_rate, self._dep1,
-                                     self.nspecies, self.species, self._source)
+                explicit_drag_source(u_old, self.mesh.ghosts, self._sp_t, self._off_t, self._shear_rate, self._dep1,
+                                     self.nspecies, self.species_t, self._source)
         # 3. gas predictor
         use_ext = self.feedback or bool(self.gas_terms)
         ext = self._stage_source(u_old, t) if use_ext else None

@@ -184,13 +184,18 @@ def cell_trajectories(u_old, u_half, gas_g, s_drag, pred_dt, h, layout, spacing,
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def explicit_drag_source(u_old, gas_g, sp, off, shear_rate, dep, nsp, sp_tab, out) -> None:
+def explicit_drag_source(u_old, gas_g, spacing, offsets, shear_rate, dep, nsp, species_table, out) -> None:
     """The drag of the dust on the gas at ``t^n``, ``S = Σ_s ρ_s (V_s - u)/T_s`` per domain
     cell (momentum per volume and time, ``out`` ``(3, nz, ny, nx)``), from the dust deposit
     ``dep`` ``(nz, ny, nx, 4 nsp)`` (:func:`dust_values`: velocities relative to the shear
     ``shear_rate``) and the gas state ``u_old`` (ghosts ``gas_g``): the predictor's source at
-    the first step, which has no previous corrector's.
+    the first step, which has no previous corrector's. ``spacing``, ``offsets`` and
+    ``species_table`` are the tuples of :class:`~dustygas.grid.mesh.Spacing`,
+    :class:`~dustygas.grid.mesh.Offsets` and :class:`~dustygas.particles.drag.Species`.
     """
+    sp = Spacing(*spacing)
+    off = Offsets(*offsets)
+    sp_tab = Species(*species_table)
     nc, nz, ny, nx = out.shape
     gx, gy, gz = gas_g
     for k in prange(nz):

@@ -13,14 +13,18 @@ by stubs, takes 10 µs), and it does not divide between threads.
 exchange to the corrector and the end-of-step exchange) in one call for the case that most
 small runs are: one block holding a whole 2D x–z box, periodic along x and z (no particle
 leaves it, and the deposits read the periodic images in place), with the grid-scale filter, the
-VL2 gas integrator, no gas terms and no mesh term, after the first step. It calls the same
+VL2 gas integrator, no gas terms and no mesh term, from the first step on (the first adds the
+drag at ``t^n`` to the predictor, :func:`~dustygas.particles.push.explicit_drag_source`, where
+later steps use the previous corrector's). It calls the same
 kernels with the same arguments in the same order as the Python sequence, so the two give the
 same state bit for bit (``tests/particles/test_step_xz.py``). The engine uses it where it
 applies (:attr:`~dustygas.particles.coupling.ParticleGridEngine.compiled_step`); in the linA box
 a step took 19-38 µs less on one thread and 23-37 µs less on two, whole runs 1-4 % less
 (2026-12-06). The sequence is written twice, here and in the Python step: a change to one is a
 change to the other, and the test compares them on every registered problem that takes the
-compiled step.
+compiled step. Until 2026-12-06 the first step went through the Python sequence: a new process
+then loaded every kernel of the sequence from numba's cache at the first step and the compiled
+step at the second, about 0.11 s each in the linA box (one load now).
 """
 
 from __future__ import annotations
@@ -33,15 +37,16 @@ from ..grid.integrator import advance_gas
 from .boundaries import apply_boundaries
 from .deposit import filter_field_xz, filter_pieces, pull_deposit
 from .drag import step_coefficients
-from .push import cell_trajectories, copy_domain, dust_values, kick, occupied_rows, padded_rows
+from .push import (cell_trajectories, copy_domain, dust_values, explicit_drag_source, kick, occupied_rows,
+                   padded_rows)
 from .store import sort_by_cell
 
 __all__ = ["coupled_step_xz", "OneCallStep"]
 
 
 @njit(cache=True, error_model="numpy")
-def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedback, switches, particles, layout,
-                    sorting, images, drag, fields, gas, gas_t):
+def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedback, first, switches, particles,
+                    layout, sorting, images, drag, fields, gas, gas_t):
     """One coupled step of a whole periodic x–z box.
 
     Parameters
@@ -53,6 +58,9 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
         The shear offsets at ``t + h/2`` and ``t + h`` (the exchanges).
     n, nthreads, feedback
         The particle count, the chunks of the parallel loops and whether the dust drags the gas.
+    first
+        Whether the predictor takes the drag at ``t^n`` (the first step of a run with
+        ``feedback``: no corrector has left its source yet).
     switches
         ``(True, False, 0, 1, 2)``: the flags and stage numbers the kernels take, as values that
         arrive at run time. Written here as constants, they would be typed as literals, and each
@@ -111,6 +119,8 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
         dust_values(pos, vel, species, mass, n, inv_vol, yes, shear_rate, back, values, cols)
         pull_deposit(dep1, ghost1, lay, reach, R, cell_start, keys, wts, values, cols, img_row_start, img_cell, img_w,
                      img_src, nthreads, yes, yes)
+        if first:
+            explicit_drag_source(u_old, ghosts, sp, off, shear_rate, dep1, nspecies, species_table, source)
     ext = source if feedback else no_ext
     # 3. gas predictor
     advance_gas(states, ints, reals, stage0, stage1, no, h, gas_t, gas_layout, gas_spacing, scheme, terms, gas_bounds,
@@ -144,7 +154,7 @@ def coupled_step_xz(h, back, pred_dt, half_shift, end_shift, n, nthreads, feedba
 class OneCallStep:
     """The engine's side of :func:`coupled_step_xz` (a mixin of the coupled engine).
 
-    :attr:`compiled_step` says whether the steps after the first run as one compiled call; the
+    :attr:`compiled_step` says whether the steps run as one compiled call; the
     engine sets it where the case applies (module docstring), and setting it to False runs
     every step through the Python sequence (the same kernels, the same state).
     """
@@ -175,7 +185,7 @@ class OneCallStep:
         return layout, sorting, images, drag, fields, self.gas.two_stage_arguments()  # the gas's arrays are made once
 
     def _advance_one_call(self, dt: float) -> None:
-        """:meth:`advance` after the first step, through :func:`coupled_step_xz`."""
+        """:meth:`advance` through :func:`coupled_step_xz`."""
         gas, p = self.gas, self.particles
         h = dt
         t = gas.t
@@ -188,10 +198,12 @@ class OneCallStep:
         shift = self.geometry.shear_offset
         bad, k_lo, k_hi, vmax, rate, bad_gas = coupled_step_xz(
             h, 0.5 * h, gas.stage_weight(0) * h, shift(t + 0.5 * h), shift(t + h), p.n, numba.get_num_threads(),
-            self.feedback, (True, False, 0, 1, 2), p.buffers(), layout, sorting, images, drag, fields, gas_arrays, t)
+            self.feedback, self.feedback and not self._have_source, (True, False, 0, 1, 2), p.buffers(), layout,
+            sorting, images, drag, fields, gas_arrays, t)
         self._coef_dt = h
         if bad >= 0:
             self._stop_nonfinite(bad)  # raises
+        self._have_source = self._have_source or self.feedback
         self._images = 0
         self.field_rows = (k_lo, k_hi)
         self._vmax = vmax
