@@ -50,10 +50,54 @@ def vector_probe(reps, rounds):
 
 PROBE = VECTOR_PROBE + "print(vector_probe(20000, 8))\n"
 
+#: a streaming loop over 3 MB -- about the arrays of the si-linA step (2.9 MB), more than one core's
+#: L2 (1 MB), held in the L3 the vCPUs share with the host's other guests -- in two halves, and its
+#: two-thread gain (best of ``rounds`` calls of ``passes`` passes per thread count). On 2026-12-07
+#: (AMD) a 4 MB version gained 1.96 (median of 12 rounds) at 00:47 and the 3 MB one 0.84-2.11
+#: (median 1.19, 16 rounds) at 01:27, beside si-linA steps that gained 0.96-1.87 (median 1.30) in
+#: the same seconds (benchmarks/RESULTS.md): a loop with no synchronisation and nothing shared
+#: between the threads loses as much as our step when the host is in its slow state
+STREAM_PROBE = """
+import time, numba, numpy as np
+from numba import njit, prange
+@njit(parallel=True)
+def stream(x, nchunk, passes):
+    n = x.size
+    for c in prange(nchunk):
+        lo, hi = c * n // nchunk, (c + 1) * n // nchunk
+        for r in range(passes):
+            for i in range(lo, hi):
+                x[i] = x[i] * 0.9999999 + 1e-7
+xs = np.ones(3 * 1024 * 1024 // 8)
+stream(xs, 1, 1)
+stream(xs, 2, 1)
+def stream_probe(passes, rounds):
+    best = {}
+    for n in (1, 2, 1, 2):
+        numba.set_num_threads(n)
+        for _ in range(rounds):
+            t0 = time.perf_counter()
+            stream(xs, n, passes)
+            best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
+    return best[1] / best[2]
+"""
+
+STREAM = STREAM_PROBE + "print(stream_probe(20, 3))\n"
+
 
 def vector_gain() -> float:
     """Two-thread gain of the vectorised loop (NaN if the machine has fewer than two CPUs)."""
-    out = subprocess.run([sys.executable, "-c", PROBE], capture_output=True, text=True,
+    return _probe(PROBE)
+
+
+def stream_gain() -> float:
+    """Two-thread gain of the 3 MB streaming loop (NaN if the machine has fewer than two CPUs)."""
+    return _probe(STREAM)
+
+
+def _probe(code: str) -> float:
+    """Run a probe's source in a fresh process with two numba threads; its last number printed."""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env={"NUMBA_NUM_THREADS": "2", **{k: v for k, v in __import__("os").environ.items()
                                                          if k != "NUMBA_NUM_THREADS"}})
     try:
@@ -69,4 +113,4 @@ def describe(gain: float) -> str:
 
 
 if __name__ == "__main__":
-    print(describe(vector_gain()))
+    print(f"{describe(vector_gain())}; 3 MB stream gain {stream_gain():.2f}")
