@@ -35,7 +35,9 @@ hardware threads (the virtual machine moves between the two; printed per repeat 
 ``s``), and 1T/2T is also given over the two-core repeats alone when the repeats differ, and
 per repeat in the order run, each with its ``2`` or ``s`` (since 2026-12-06: single repeats of
 si-linA moved by about 0.1 minutes apart, and the two-core repeats were not the better ones, so a
-set's median says more than any repeat).
+set's median says more than any repeat). Since 2026-12-07 each repeat also prints the two-thread
+gain of ``_cores.py``'s 3 MB streaming loop just before it (1.94-1.96 when the host leaves the two
+vCPUs alone; it fell to 0.84-2.1 within a minute that night).
 
 Run alone::
 
@@ -54,7 +56,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from _cores import SHARED_BELOW, vector_gain
+from _cores import SHARED_BELOW, stream_gain, vector_gain
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = {
@@ -123,8 +125,10 @@ def main() -> None:
                 chosen = set()
                 loads = []
                 shared = []  # per repeat: do the two CPUs share one core right now (benchmarks/_cores.py)?
+                streams = []  # per repeat: the 3 MB streaming loop's two-thread gain just before it
                 for _ in range(args.repeat):
                     shared.append(vector_gain() < SHARED_BELOW)
+                    streams.append(stream_gain())
                     for label in args.settings:
                         setting = SETTINGS[label]
                         hog = None
@@ -159,6 +163,7 @@ def main() -> None:
                 if "2T" in walls and "1T" in walls:  # each repeat's ratio with its cores, in order
                     cells.append("1T/2T per repeat " + " ".join(
                         f"{a / b:.3f}{'s' if sh else '2'}" for a, b, sh in zip(walls["1T"], walls["2T"], shared)))
+                cells.append("stream gain per repeat " + " ".join(f"{g:.2f}" for g in streams))
                 print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}",
                       flush=True)
 
