@@ -24,10 +24,20 @@ import sys
 SHARED_BELOW = 1.2
 
 #: the vectorised loop and its two-thread gain (best of ``rounds`` calls of ``reps`` passes per thread
-#: count); the source is run in a fresh process here and inside bench_machine's stepping process
+#: count); the source is run in a fresh process here and inside bench_machine's stepping process, and
+#: defines ``two_thread_gain``, which the stream probe below uses too
 VECTOR_PROBE = """
 import time, numba, numpy as np
 from numba import njit, prange
+def two_thread_gain(call, rounds):
+    best = {}
+    for n in (1, 2, 1, 2):
+        numba.set_num_threads(n)
+        for _ in range(rounds):
+            t0 = time.perf_counter()
+            call(n)
+            best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
+    return best[1] / best[2]
 @njit(parallel=True, fastmath=True)
 def vector(x, reps):
     for c in prange(2):
@@ -38,14 +48,7 @@ def vector(x, reps):
 x = np.ones((2, 1024))
 vector(x, 1)
 def vector_probe(reps, rounds):
-    best = {}
-    for n in (1, 2, 1, 2):
-        numba.set_num_threads(n)
-        for _ in range(rounds):
-            t0 = time.perf_counter()
-            vector(x, reps)
-            best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
-    return best[1] / best[2]
+    return two_thread_gain(lambda n: vector(x, reps), rounds)
 """
 
 PROBE = VECTOR_PROBE + "print(vector_probe(20000, 8))\n"
@@ -56,10 +59,9 @@ PROBE = VECTOR_PROBE + "print(vector_probe(20000, 8))\n"
 #: (AMD) a 4 MB version gained 1.96 (median of 12 rounds) at 00:47 and the 3 MB one 0.84-2.11
 #: (median 1.19, 16 rounds) at 01:27, beside si-linA steps that gained 0.96-1.87 (median 1.30) in
 #: the same seconds (benchmarks/RESULTS.md): a loop with no synchronisation and nothing shared
-#: between the threads loses as much as our step when the host is in its slow state
+#: between the threads loses as much as our step when the host is in its slow state. The source
+#: runs after ``VECTOR_PROBE``, whose imports and ``two_thread_gain`` it uses
 STREAM_PROBE = """
-import time, numba, numpy as np
-from numba import njit, prange
 @njit(parallel=True)
 def stream(x, nchunk, passes):
     n = x.size
@@ -72,17 +74,10 @@ xs = np.ones(3 * 1024 * 1024 // 8)
 stream(xs, 1, 1)
 stream(xs, 2, 1)
 def stream_probe(passes, rounds):
-    best = {}
-    for n in (1, 2, 1, 2):
-        numba.set_num_threads(n)
-        for _ in range(rounds):
-            t0 = time.perf_counter()
-            stream(xs, n, passes)
-            best[n] = min(best.get(n, 1e9), time.perf_counter() - t0)
-    return best[1] / best[2]
+    return two_thread_gain(lambda n: stream(xs, n, passes), rounds)
 """
 
-STREAM = STREAM_PROBE + "print(stream_probe(20, 3))\n"
+STREAM = VECTOR_PROBE + STREAM_PROBE + "print(stream_probe(20, 3))\n"
 
 
 def vector_gain() -> float:
