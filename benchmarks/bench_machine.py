@@ -128,8 +128,7 @@ def main() -> None:
     print(f"  1T {summary(t1, 1e6, 'us')} (10-90 % {deciles(t1, 1e6, '.0f')})")
     print(f"  2T {summary(t2, 1e6, 'us')} (10-90 % {deciles(t2, 1e6, '.0f')})")
     print(f"  1T/2T of the medians {statistics.median(t1) / statistics.median(t2):.3f}; per pair median "
-          f"{statistics.median([a / b for a, b in zip(t1, t2)]):.3f} (10-90 % "
-          f"{deciles([a / b for a, b in zip(t1, t2)], 1, '.3f')}); vector probe beside the pairs median "
+          f"{statistics.median(gains):.3f} (10-90 % {deciles(gains, 1, '.3f')}); vector probe beside the pairs median "
           f"{statistics.median([q[0] for q in pairs]):.2f} (10-90 % {deciles([q[0] for q in pairs], 1, '.2f')})")
     print(f"  3 MB stream probe beside the pairs median {statistics.median(streams):.2f} (10-90 % "
           f"{deciles(streams, 1, '.2f')}); correlation of a pair's gain with it {correlation(gains, streams):.2f}, "
