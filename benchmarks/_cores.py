@@ -13,10 +13,16 @@ That reading holds for the AMD machine it was made on. On an Intel two-vCPU mach
 afternoon) the probe was bimodal too (0.43-1.87), but its state did not predict our kernels'
 gains: a grid-box repeat probed as "two cores" gained 1.21 and two probed as "shared" 1.77 and
 1.80 (benchmarks/RESULTS.md). There, read the per-repeat ratios, not the label.
+
+:func:`stream_gain` (since 2026-12-07) times a second loop, each thread streaming through its own
+half of 3 MB, about the si-linA step's working set: it tells whether the host lets two threads
+move data at full speed right now (1.94-1.96), which the register-bound and L1-bound loops above
+do not. Both probes describe the second they ran in, not the run after them.
 """
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -93,8 +99,7 @@ def stream_gain() -> float:
 def _probe(code: str) -> float:
     """Run a probe's source in a fresh process with two numba threads; its last number printed."""
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env={"NUMBA_NUM_THREADS": "2", **{k: v for k, v in __import__("os").environ.items()
-                                                         if k != "NUMBA_NUM_THREADS"}})
+                         env={**os.environ, "NUMBA_NUM_THREADS": "2"})
     try:
         return float(out.stdout.split()[-1])
     except (IndexError, ValueError):
