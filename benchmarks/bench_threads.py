@@ -29,7 +29,10 @@ the medians, the range of the per-repeat ratios and the ratio of the best times.
 given twice: over the loop's wall time and over it less the run's first step (``first_step=``
 of the summary line), in which a new process loads the step's compiled kernels from numba's
 cache -- about 0.1 s on any thread count, start-up like the import that no figure here
-includes (until 2026-12-05 it was in every wall time). Before each
+includes (until 2026-12-05 it was in every wall time). Since 2026-12-07 the engines of si-linA
+and the grid box load their step before the loop's clock starts (``load_kernels()``,
+:mod:`dustygas.runner`), so their first step is a step (2-5 ms) and the two figures nearly
+agree; the SPH box still loads its kernels in its first step (about 0.04 s). Before each
 repeat ``benchmarks/_cores.py`` probes whether the two CPUs are two cores or one core's two
 hardware threads (the virtual machine moves between the two; printed per repeat as ``2`` or
 ``s``), and 1T/2T is also given over the two-core repeats alone when the repeats differ, and
