@@ -32,7 +32,7 @@ import re
 import warnings
 from pathlib import Path
 
-__all__ = ["install", "source_stamp"]
+__all__ = ["install", "load_for_arguments", "source_stamp"]
 
 _ROOT = Path(__file__).resolve().parent
 _PACKAGE = _ROOT.name
@@ -186,3 +186,14 @@ def install() -> None:
     locator = _locator_class()
     locator._dustygas_root = _ROOT  # each copy of dustygas answers for its own files only
     classes.insert(0, locator)
+
+
+def load_for_arguments(kernel, args: tuple) -> None:
+    """Have numba load ``kernel`` from this cache (or compile it) for the types of ``args``,
+    without running it: the overload a later ``kernel(*args)`` finds ready.
+
+    The types are numba's own for a call (``typeof_pyval``), so a call with values of the same
+    types dispatches to this overload; the engines' ``load_kernels()`` use it before the run
+    loop's clock starts (:mod:`dustygas.runner`).
+    """
+    kernel.compile(tuple(kernel.typeof_pyval(a) for a in args))

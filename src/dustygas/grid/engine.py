@@ -22,6 +22,7 @@ from typing import Any, Callable
 import numba
 import numpy as np
 
+from .._numba_cache import load_for_arguments
 from ..errors import SetupError, SimulationError, UserError
 from .boundaries import BOUNDARY_KINDS, PERIODIC, SHEAR_PERIODIC, fill_ghosts, make_boundaries
 from .budget import budget_offsets, budget_rows_from, budget_totals
@@ -321,7 +322,7 @@ class GridEngine:
         calls it before its clock starts: 0.07 s for a 256² shearing box, 2026-12-07). Nothing
         is run and the state is not touched."""
         if self._ctu is None:
-            advance_gas.compile(tuple(advance_gas.typeof_pyval(a) for a in self._step_arguments(0.0)))
+            load_for_arguments(advance_gas, self._step_arguments(0.0))
 
     @property
     def stage_count(self) -> int:

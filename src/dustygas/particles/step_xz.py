@@ -33,6 +33,7 @@ import numba
 import numpy as np
 from numba import njit
 
+from .._numba_cache import load_for_arguments
 from ..grid.integrator import advance_gas
 from .boundaries import apply_boundaries
 from .deposit import filter_field_xz, filter_pieces, pull_deposit
@@ -207,8 +208,7 @@ class OneCallStep:
         throughput are the steps'. Nothing is run and the state is not touched.
         """
         if self.compiled_step:
-            args = self._one_call_arguments(0.0)
-            coupled_step_xz.compile(tuple(coupled_step_xz.typeof_pyval(a) for a in args))
+            load_for_arguments(coupled_step_xz, self._one_call_arguments(0.0))
 
     def _advance_one_call(self, dt: float) -> None:
         """:meth:`advance` through :func:`coupled_step_xz`."""
