@@ -23,7 +23,9 @@ excluded: one short untimed run compiles first). Cases:
 "busy" runs a pure-Python busy loop (one core) beside every timed run. For each case and
 condition the script prints the wall time with ``--threads 1``, ``--threads 2`` and the
 default, as the median and the range over ``--repeat`` repeats (the thread settings alternate
-within each repeat, so a repeat's runs see the same machine), and the ratios default/1T (must
+within each repeat, so a repeat's runs see the same machine, in the reverse order every other
+repeat since 2026-12-07, so that a host that slows down or speeds up over a repeat's minutes
+favours neither), and the ratios default/1T (must
 be <= 1.10 when busy) and 1T/default, 1T/2T (must be >= 1.8 on a quiet machine): the ratio of
 the medians, the range of the per-repeat ratios and the ratio of the best times. 1T/2T is
 given twice: over the loop's wall time and over it less the run's first step (``first_step=``
@@ -40,7 +42,8 @@ per repeat in the order run, each with its ``2`` or ``s`` (since 2026-12-06: sin
 si-linA moved by about 0.1 minutes apart, and the two-core repeats were not the better ones, so a
 set's median says more than any repeat). Since 2026-12-07 each repeat also prints the two-thread
 gain of ``_cores.py``'s 3 MB streaming loop just before it (1.94-1.96 when the host leaves the two
-vCPUs alone; it fell to 0.84-2.1 within a minute that night).
+vCPUs alone; it fell to 0.84-2.1 within a minute that night). Busy sets also print default/1T per repeat,
+each with the thread counts the default's tuner decided in that run (``1>1``: two decisions).
 
 Run alone::
 
@@ -126,13 +129,16 @@ def main() -> None:
                 walls: dict[str, list[float]] = {label: [] for label in args.settings}
                 later: dict[str, list[float]] = {label: [] for label in args.settings}  # after the first step
                 chosen = set()
+                picks = []  # the default's thread decisions, per repeat
                 loads = []
                 shared = []  # per repeat: do the two CPUs share one core right now (benchmarks/_cores.py)?
                 streams = []  # per repeat: the 3 MB streaming loop's two-thread gain just before it
-                for _ in range(args.repeat):
+                for rep in range(args.repeat):
                     shared.append(vector_gain() < SHARED_BELOW)
                     streams.append(stream_gain())
-                    for label in args.settings:
+                    # odd repeats in the reverse order (A B, B A, ...): a host that drifts within a
+                    # repeat's minutes then favours neither setting
+                    for label in (args.settings if rep % 2 == 0 else args.settings[::-1]):
                         setting = SETTINGS[label]
                         hog = None
                         if condition == "busy":
@@ -149,6 +155,7 @@ def main() -> None:
                         later[label].append(wall - first)
                         if label == "default":
                             chosen.add(threads)
+                            picks.append(threads)
                 cells = [f"{label} {spread(walls[label], '7.2f')} s" for label in args.settings]
                 if "default" in walls:
                     cells[args.settings.index("default")] += f" (threads {' | '.join(sorted(chosen))})"
@@ -166,6 +173,9 @@ def main() -> None:
                 if "2T" in walls and "1T" in walls:  # each repeat's ratio with its cores, in order
                     cells.append("1T/2T per repeat " + " ".join(
                         f"{a / b:.3f}{'s' if sh else '2'}" for a, b, sh in zip(walls["1T"], walls["2T"], shared)))
+                if "default" in walls and "1T" in walls:  # each repeat's ratio with the default's decisions
+                    cells.append("default/1T per repeat " + " ".join(
+                        f"{a / b:.3f}({t})" for a, b, t in zip(walls["default"], walls["1T"], picks)))
                 cells.append("stream gain per repeat " + " ".join(f"{g:.2f}" for g in streams))
                 print(f"{name:8s} {condition:5s}  " + "  ".join(cells) + f"  load {min(loads)}-{max(loads)}",
                       flush=True)

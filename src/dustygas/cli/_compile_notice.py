@@ -3,7 +3,7 @@
 numba compiles each kernel the first time it is called and caches the machine code on disk
 (:mod:`dustygas._numba_cache`), so the first run of a fresh installation spends minutes compiling
 before its first step (the default job's 183-193 kernels took 143-249 s on the two-vCPU test
-machines, 2026-12-05/06). :func:`compile_notice` listens to numba's
+machines, AMD and Intel, 2026-12-05/07). :func:`compile_notice` listens to numba's
 ``numba:compile`` events (sent only when a kernel is compiled, not when it is loaded from the
 cache) and says so on stderr: a line when compilation starts, one every ``every`` seconds
 while it goes on, naming the kernel, and a summary when the command ends.
@@ -40,7 +40,7 @@ class _Notice:
     def on_start(self, event) -> None:
         with self._lock:
             if self.count == 0:
-                self.say("compiling numba kernels (first run of this code: up to about 4 minutes on two cores; "
+                self.say("compiling numba kernels (first run of this code: about 3 to 5 minutes on two cores; "
                          "later runs load them from the cache)")
                 self._ticker = threading.Thread(target=self._tick, name="dustygas-compile-notice", daemon=True)
                 self._ticker.start()
