@@ -41,7 +41,8 @@ When things are written (all files atomically; the directory is locked while a p
   (:mod:`dustygas.io.checkpoint`).
 
 ``run.threads = 0`` (the default) lets :class:`~dustygas.threads.ThreadTuner` choose the thread
-count from measured step times, between one and numba's current setting; the kernels give
+count from measured step times, between one and numba's current setting (and, on Linux, never one
+that would share a core with another process's work: :class:`~dustygas.threads.OtherLoad`); the kernels give
 bit-identical results for any thread count. Exit statuses are listed in :mod:`dustygas.errors`.
 
 Restarting (:func:`dustygas.api.restart`) rebuilds the engine from the configuration stored in

@@ -26,6 +26,18 @@ use, without repeats):
    ``watch_seconds``: two windows in a row whose cost is off the first window after the decision
    by more than ``drift`` (another process started or stopped) bring the next trial forward.
 
+5. where the operating system says how busy the CPUs are (Linux: ``/proc/stat``), the CPU time
+   that *other* processes used on this process's CPUs during a trial (:class:`OtherLoad`: the
+   CPUs' busy time less this process's own) rules out the counts that would share a core with
+   them: ``n`` threads only while ``n <= available - others + 1/2``. Timed blocks alone can be
+   fooled: on a virtual machine whose single-thread speed swings by 2x within a second (the
+   two-vCPU Intel host of 2026-12-07: 1.7-3.4 ms per si-linA step in 50 ms blocks), the two
+   0.1 s blocks at two threads beside a busy core can both come out ahead, and the run then
+   goes on at two threads, there 1.5x slower than one, until its next check (one default run
+   of three did so in a busy set that day). Between trials the same count is
+   read every ``watch_seconds``, and a change of the counts it rules out (the other process
+   stopped, or one started) brings the next trial forward.
+
 A trial spends half its blocks on the slower choice. With two candidates and the default
 constants a trial takes about 0.4 s of stepping, of which about 0.13 s are lost when the slower
 choice is 3 times slower: 3 % of a 4 s run, 0.4 % of the first 30 s, then less as the interval
@@ -34,9 +46,12 @@ grows; a load that changes is followed within the current interval.
 
 from __future__ import annotations
 
+import os
+import time
 from dataclasses import dataclass, field
+from typing import Callable
 
-__all__ = ["ThreadTuner", "ThreadControl", "thread_candidates"]
+__all__ = ["ThreadTuner", "ThreadControl", "OtherLoad", "thread_candidates"]
 
 
 def thread_candidates(available: int) -> list[int]:
@@ -45,12 +60,76 @@ def thread_candidates(available: int) -> list[int]:
     return sorted({1, max(1, available // 2), max(1, available - 1), available})
 
 
+class OtherLoad:
+    """Cores that other processes used on this process's CPUs since the previous reading.
+
+    ``/proc/stat`` counts, per CPU, the time spent busy (user, nice, system, irq, softirq; not
+    idle, I/O wait or steal) in clock ticks; this process's own CPU time, all its threads
+    included, is ``os.times()``. Their difference over a wall-clock interval is the number of
+    cores that other processes (and the kernel's work for them) kept busy on the CPUs in this
+    process's affinity mask: about 1.0 beside one busy loop, 0.0-0.1 on a quiet machine. numba's
+    threads that spin at a barrier count as this process's time, so the reading does not count
+    our own threads, as the load average does.
+
+    :meth:`cores` returns None where there is no ``/proc/stat`` (not Linux) or fewer than
+    ``min_seconds`` have passed since the previous reading (clock ticks are 10 ms: over 0.2 s on
+    two CPUs the reading is good to about 0.1 core), and then keeps the previous reading as the
+    start of the next interval.
+    """
+
+    def __init__(self, min_seconds: float = 0.2):
+        self.min_seconds = min_seconds
+        try:
+            self._cpus = {f"cpu{c}" for c in os.sched_getaffinity(0)}
+        except (AttributeError, OSError):
+            self._cpus = None
+        self._tick = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
+        self._last = self._sample()
+
+    def _sample(self) -> tuple[float, float, float] | None:
+        """(wall clock, busy seconds of the CPUs, this process's CPU seconds), or None."""
+        try:
+            with open("/proc/stat", encoding="ascii") as f:
+                lines = f.read().splitlines()
+        except OSError:
+            return None
+        busy = 0
+        for line in lines:
+            if not (line.startswith("cpu") and line[3:4].isdigit()):
+                continue
+            name, *ticks = line.split()
+            if self._cpus is not None and name not in self._cpus:
+                continue
+            try:  # user nice system idle iowait irq softirq (older kernels: fewer columns)
+                v = [int(t) for t in ticks[:7]] + [0] * max(0, 7 - len(ticks))
+            except ValueError:
+                return None
+            busy += v[0] + v[1] + v[2] + v[5] + v[6]
+        own = os.times()
+        return time.perf_counter(), busy / self._tick, own.user + own.system
+
+    def cores(self) -> float | None:
+        """Cores kept busy by other processes since the previous reading (None: unknown)."""
+        if self._last is None:
+            return None
+        now = self._sample()
+        if now is None or now[0] - self._last[0] < self.min_seconds:
+            return None
+        wall = now[0] - self._last[0]
+        others = ((now[1] - self._last[1]) - (now[2] - self._last[2])) / wall
+        self._last = now
+        return max(others, 0.0)
+
+
 @dataclass
 class ThreadTuner:
     """Chooses the number of numba threads from measured step times (see module docstring).
 
     Call :meth:`threads_for_next_step` before each step, set that many threads, and report the
     step's wall time and work with :meth:`record`. With one candidate it always answers it.
+    ``others`` reads the cores that other processes used since its previous call (None:
+    unknown; :meth:`OtherLoad.cores`, or a stand-in in tests); without it only the timed
+    blocks decide.
     """
 
     available: int
@@ -63,6 +142,7 @@ class ThreadTuner:
     max_rounds: int = 3
     drift: float = 0.3
     watch_seconds: float = 2.0
+    others: Callable[[], float | None] | None = None
     candidates: list[int] = field(init=False)
     choice: int = field(init=False)
     decisions: list[str] = field(default_factory=list, init=False)
@@ -81,6 +161,8 @@ class ThreadTuner:
         self._watch = [0, 0.0, 0.0]  # steps, seconds, work of the current window
         self._off = 0  # windows in a row whose cost is off the reference
         self._all: dict[int, list[float]] = {}  # block costs of all rounds of the current trial
+        self._ruled_out: set[int] = set()  # counts that would share a core with other processes
+        self._others = 0.0  # the cores other processes used during the last trial
 
     def threads_for_next_step(self) -> int:
         if len(self.candidates) == 1:
@@ -97,10 +179,17 @@ class ThreadTuner:
         return self.block_seconds * 2**self._round
 
     def _start_trial(self) -> None:
-        order = sorted(self.candidates, key=lambda n: (n != self.choice, n))  # current choice first
+        if self._round == 0 and self.others is not None:
+            self.others()  # the reading at the decision covers the trial
+        tried = [n for n in self.candidates if n not in self._ruled_out]
+        order = sorted(tried, key=lambda n: (n != self.choice, n))  # current choice first
         self._plan = order + order[::-1]
-        self._results = {n: [] for n in self.candidates}
+        self._results = {n: [] for n in tried}
         self._block = [0, 0.0, 0.0]
+
+    def _rule_out(self, others: float) -> set[int]:
+        """The counts that would share a core with ``others`` cores of other processes' work."""
+        return {n for n in self.candidates if n > 1 and n > self.available - others + 0.5}
 
     def record(self, seconds: float, work: float) -> None:
         """Report the wall time and the work units of the step just taken."""
@@ -125,7 +214,8 @@ class ThreadTuner:
     def _look(self, seconds: float, work: float) -> None:
         """Between trials: the step cost in windows of ``watch_seconds``; the first window after a
         decision is the reference, and two windows in a row off it by more than ``drift`` (another
-        process started or stopped) bring the next trial forward to now."""
+        process started or stopped) bring the next trial forward to now, and so does a reading of
+        :attr:`others` at the end of a window that rules out other counts than the last trial's."""
         watch = self._watch
         watch[0] += 1
         watch[1] += seconds
@@ -134,6 +224,10 @@ class ThreadTuner:
             return
         cost = watch[1] / watch[2]
         self._watch = [0, 0.0, 0.0]
+        reading = self.others() if self.others is not None else None
+        if reading is not None and self._rule_out(reading) != self._ruled_out:
+            self._others, self._ruled_out = reading, self._rule_out(reading)  # another process started or stopped:
+            self._since_trial = self._interval  # a trial now, of the counts that are not ruled out
         if self._expected <= 0:
             self._expected = cost
             return
@@ -148,8 +242,18 @@ class ThreadTuner:
         return min(n for n, c in cost.items() if c <= best * (1.0 + margin))
 
     def _decide(self) -> None:
-        """Both halves of the mirrored trial must agree; else again with blocks twice as long."""
-        halves = [self._pick({n: v[i] for n, v in self._results.items()}, self.margin) for i in (0, 1)]
+        """Both halves of the mirrored trial must agree; else again with blocks twice as long.
+        Counts that the cores other processes used during the trial rule out are not chosen."""
+        reading = self.others() if self.others is not None else None
+        if reading is not None:
+            self._others = reading
+            self._ruled_out = self._rule_out(reading)
+        if any(n not in self._ruled_out and n not in self._results for n in self.candidates):
+            self._round = 0  # a count ruled out when the trial started is free now: try it too
+            self._start_trial()
+            return
+        allowed = {n: v for n, v in self._results.items() if n not in self._ruled_out}
+        halves = [self._pick({n: v[i] for n, v in allowed.items()}, self.margin) for i in (0, 1)]
         if self._round == 0:
             self._all = {}
         for n, v in self._results.items():
@@ -171,6 +275,9 @@ class ThreadTuner:
         self._watch = [0, 0.0, 0.0]
         rates = ", ".join(f"{n} thread{'s' if n > 1 else ''}: {1.0 / c:.4g}/s" for n, c in sorted(cost.items()))
         agreed = "" if halves[0] == halves[1] else f", undecided after {self.max_rounds} rounds"
+        if self._ruled_out:
+            ruled = ", ".join(str(n) for n in sorted(self._ruled_out))
+            agreed += f"; other processes kept {self._others:.2f} cores busy: {ruled} ruled out"
         self.decisions.append(f"threads: {choice} ({rates}{agreed}; next check in {self._interval:.0f} s of stepping)")
 
 
@@ -199,7 +306,7 @@ class ThreadControl:
             self.current = min(requested, numba.config.NUMBA_NUM_THREADS)
             numba.set_num_threads(self.current)
         else:
-            self.tuner = ThreadTuner(self.before)
+            self.tuner = ThreadTuner(self.before, others=OtherLoad().cores)
             self.current = self.before
         self._reported = 0
 

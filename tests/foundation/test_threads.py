@@ -64,12 +64,63 @@ def test_candidates():
     assert thread_candidates(16) == [1, 8, 15, 16]
 
 
+def test_another_process_on_a_core_rules_out_two_threads_whatever_the_blocks_say():
+    """Timed blocks that favour two threads (a host whose speed swings fools a pair of 0.1 s blocks
+    now and then) cannot choose them while another process keeps a core busy; once it stops, the
+    next reading (every 2 s of stepping) brings a trial that returns to two threads."""
+    load = {"others": 1.0}
+    tuner = ThreadTuner(available=2, others=lambda: load["others"])
+    spent = _drive(tuner, lambda t: QUIET, 100.0)
+    assert tuner.choice == 1
+    assert spent[2] < 0.3  # only the first trial's two blocks of >= 0.1 s (0.22 s here)
+    assert "1.00 cores busy: 2 ruled out" in tuner.decisions[0]
+    load["others"] = 0.05  # the other process stopped (the kernel's own work remains)
+    spent = _drive(tuner, lambda t: QUIET, 10.0)
+    assert tuner.choice == 2 and spent[1] < 3.0  # a 2 s window, then the trial
+
+
+@pytest.mark.parametrize("others, allowed", [(0.0, [1, 8, 15, 16]), (0.6, [1, 8, 15]), (1.0, [1, 8, 15]),
+                                             (8.0, [1, 8]), (8.6, [1]), (15.0, [1])])
+def test_counts_ruled_out_by_other_processes_leave_them_their_cores(others, allowed):
+    """``n`` threads only while ``n <= available - others + 1/2`` (one thread always)."""
+    tuner = ThreadTuner(available=16)
+    assert sorted(set(tuner.candidates) - tuner._rule_out(others)) == allowed
+
+
+def test_other_load_reads_a_busy_loop_in_another_process():
+    """/proc/stat's busy ticks less this process's CPU time: about one core beside one busy loop
+    (more if the machine runs other work meanwhile, never more than its CPUs)."""
+    import os
+    import time
+
+    from dustygas.threads import OtherLoad
+
+    if not os.path.exists("/proc/stat"):  # not Linux: no reading, and the tuner times blocks only
+        assert OtherLoad(min_seconds=0.0).cores() is None
+        return
+    hog = subprocess.Popen([sys.executable, "-c", "while True: pass"])
+    try:
+        time.sleep(0.3)
+        probe = OtherLoad()
+        assert probe.cores() is None  # under 0.2 s: no reading yet
+        time.sleep(1.0)
+        cores = probe.cores()
+    finally:
+        hog.kill()
+        hog.wait()
+    assert 0.9 <= cores <= len(os.sched_getaffinity(0)) + 0.05
+
+
 FORCED = """
-import functools, sys
+import sys
 import dustygas.threads as threads
-# a trial at every step: the thread count changes between 1 and 2 all the time
-threads.ThreadTuner = functools.partial(threads.ThreadTuner, warmup=1, block_steps=1, block_seconds=0.0,
-                                        recheck_seconds=0.0, max_recheck_seconds=0.0)
+# a trial at every step: the thread count changes between 1 and 2 all the time (the CPUs' load
+# not read: another test's process on the other core would otherwise rule out two threads)
+_Tuner = threads.ThreadTuner
+def forced(available, **kw):
+    kw.update(warmup=1, block_steps=1, block_seconds=0.0, recheck_seconds=0.0, max_recheck_seconds=0.0, others=None)
+    return _Tuner(available, **kw)
+threads.ThreadTuner = forced
 from dustygas.cli import main
 sys.exit(main(sys.argv[1:]))
 """
