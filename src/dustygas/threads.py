@@ -34,9 +34,9 @@ use, without repeats):
    two-vCPU Intel host of 2026-12-07: 1.7-3.4 ms per si-linA step in 50 ms blocks), the two
    0.1 s blocks at two threads beside a busy core can both come out ahead, and the run then
    goes on at two threads, there 1.5x slower than one, until its next check (one default run
-   of three did so in a busy set that day). Between trials the same count is
-   read every ``watch_seconds``, and a change of the counts it rules out (the other process
-   stopped, or one started) brings the next trial forward.
+   of three did so in a busy set that day). Between trials the same count is read every
+   ``watch_seconds``, and a change of the counts it rules out (the other process stopped, or
+   one started) brings the next trial forward.
 
 A trial spends half its blocks on the slower choice. With two candidates and the default
 constants a trial takes about 0.4 s of stepping, of which about 0.13 s are lost when the slower
@@ -162,7 +162,7 @@ class ThreadTuner:
         self._off = 0  # windows in a row whose cost is off the reference
         self._all: dict[int, list[float]] = {}  # block costs of all rounds of the current trial
         self._ruled_out: set[int] = set()  # counts that would share a core with other processes
-        self._others = 0.0  # the cores other processes used during the last trial
+        self._others = 0.0  # the latest reading of the cores other processes used
 
     def threads_for_next_step(self) -> int:
         if len(self.candidates) == 1:
@@ -186,6 +186,14 @@ class ThreadTuner:
         self._plan = order + order[::-1]
         self._results = {n: [] for n in tried}
         self._block = [0, 0.0, 0.0]
+
+    def _read_others(self) -> set[int] | None:
+        """Read :attr:`others` (kept for the decision's log line); the counts it rules out, or None."""
+        reading = self.others() if self.others is not None else None
+        if reading is None:
+            return None
+        self._others = reading
+        return self._rule_out(reading)
 
     def _rule_out(self, others: float) -> set[int]:
         """The counts that would share a core with ``others`` cores of other processes' work."""
@@ -224,9 +232,9 @@ class ThreadTuner:
             return
         cost = watch[1] / watch[2]
         self._watch = [0, 0.0, 0.0]
-        reading = self.others() if self.others is not None else None
-        if reading is not None and self._rule_out(reading) != self._ruled_out:
-            self._others, self._ruled_out = reading, self._rule_out(reading)  # another process started or stopped:
+        ruled = self._read_others()
+        if ruled is not None and ruled != self._ruled_out:  # another process started or stopped:
+            self._ruled_out = ruled
             self._since_trial = self._interval  # a trial now, of the counts that are not ruled out
         if self._expected <= 0:
             self._expected = cost
@@ -244,10 +252,9 @@ class ThreadTuner:
     def _decide(self) -> None:
         """Both halves of the mirrored trial must agree; else again with blocks twice as long.
         Counts that the cores other processes used during the trial rule out are not chosen."""
-        reading = self.others() if self.others is not None else None
-        if reading is not None:
-            self._others = reading
-            self._ruled_out = self._rule_out(reading)
+        ruled = self._read_others()
+        if ruled is not None:
+            self._ruled_out = ruled
         if any(n not in self._ruled_out and n not in self._results for n in self.candidates):
             self._round = 0  # a count ruled out when the trial started is free now: try it too
             self._start_trial()

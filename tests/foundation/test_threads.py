@@ -5,14 +5,16 @@ seconds at ``n`` threads. Quiet 2-core machine: two threads 1.8x faster; one cor
 elsewhere: two threads 3.1x slower (the 12.9 s vs 40.6 s measured for si-linA).
 """
 
+import os
 import random
 import subprocess
 import sys
+import time
 
 import pytest
 
 from _runs import assert_runs_identical, run_outputs
-from dustygas.threads import ThreadTuner, thread_candidates
+from dustygas.threads import OtherLoad, ThreadTuner, thread_candidates
 
 from ._cli import env
 
@@ -90,10 +92,6 @@ def test_counts_ruled_out_by_other_processes_leave_them_their_cores(others, allo
 def test_other_load_reads_a_busy_loop_in_another_process():
     """/proc/stat's busy ticks less this process's CPU time: about one core beside one busy loop
     (more if the machine runs other work meanwhile, never more than its CPUs)."""
-    import os
-    import time
-
-    from dustygas.threads import OtherLoad
 
     if not os.path.exists("/proc/stat"):  # not Linux: no reading, and the tuner times blocks only
         assert OtherLoad(min_seconds=0.0).cores() is None
