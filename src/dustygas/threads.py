@@ -29,7 +29,11 @@ use, without repeats):
 5. where the operating system says how busy the CPUs are (Linux: ``/proc/stat``), the CPU time
    that *other* processes used on this process's CPUs during a trial (:class:`OtherLoad`: the
    CPUs' busy time less this process's own) rules out the counts that would share a core with
-   them: ``n`` threads only while ``n <= available - others + 1/2``. Timed blocks alone can be
+   them: ``n`` threads only while ``n <= cpus - others + 1/2``, where ``cpus`` counts the CPUs
+   the reading covers (those of the affinity mask; ``available`` where no reading says), so
+   that on a node of many CPUs a run limited to a few threads (``NUMBA_NUM_THREADS``, a
+   container's CPU quota) is not held at one thread by work on CPUs it does not need: 16 CPUs,
+   4 threads and 10 cores busy elsewhere leave 6 idle, and all 4 run. Timed blocks alone can be
    fooled: on a virtual machine whose single-thread speed swings by 2x within a second (the
    two-vCPU Intel host of 2026-12-07: 1.7-3.4 ms per si-linA step in 50 ms blocks), the two
    0.1 s blocks at two threads beside a busy core can both come out ahead, and the run then
@@ -83,6 +87,8 @@ class OtherLoad:
             self._cpus = {f"cpu{c}" for c in os.sched_getaffinity(0)}
         except (AttributeError, OSError):
             self._cpus = None
+        #: the number of CPUs the reading covers (the affinity mask, else every CPU)
+        self.cpus = len(self._cpus) if self._cpus is not None else (os.cpu_count() or 1)
         self._tick = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
         self._last = self._sample()
 
@@ -129,7 +135,8 @@ class ThreadTuner:
     step's wall time and work with :meth:`record`. With one candidate it always answers it.
     ``others`` reads the cores that other processes used since its previous call (None:
     unknown; :meth:`OtherLoad.cores`, or a stand-in in tests); without it only the timed
-    blocks decide.
+    blocks decide. ``cpus`` is the number of CPUs that reading covers (:attr:`OtherLoad.cpus`;
+    None: ``available``).
     """
 
     available: int
@@ -143,6 +150,7 @@ class ThreadTuner:
     drift: float = 0.3
     watch_seconds: float = 2.0
     others: Callable[[], float | None] | None = None
+    cpus: int | None = None
     candidates: list[int] = field(init=False)
     choice: int = field(init=False)
     decisions: list[str] = field(default_factory=list, init=False)
@@ -196,8 +204,10 @@ class ThreadTuner:
         return self._rule_out(reading)
 
     def _rule_out(self, others: float) -> set[int]:
-        """The counts that would share a core with ``others`` cores of other processes' work."""
-        return {n for n in self.candidates if n > 1 and n > self.available - others + 0.5}
+        """The counts that would share a core with ``others`` cores of other processes' work
+        (more threads than the ``cpus - others`` CPUs they leave idle, give or take half a core)."""
+        cpus = self.available if self.cpus is None else self.cpus
+        return {n for n in self.candidates if n > 1 and n > cpus - others + 0.5}
 
     def record(self, seconds: float, work: float) -> None:
         """Report the wall time and the work units of the step just taken."""
@@ -313,7 +323,8 @@ class ThreadControl:
             self.current = min(requested, numba.config.NUMBA_NUM_THREADS)
             numba.set_num_threads(self.current)
         else:
-            self.tuner = ThreadTuner(self.before, others=OtherLoad().cores)
+            probe = OtherLoad()
+            self.tuner = ThreadTuner(self.before, others=probe.cores, cpus=probe.cpus)
             self.current = self.before
         self._reported = 0
 

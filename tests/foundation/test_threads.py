@@ -84,9 +84,24 @@ def test_another_process_on_a_core_rules_out_two_threads_whatever_the_blocks_say
 @pytest.mark.parametrize("others, allowed", [(0.0, [1, 8, 15, 16]), (0.6, [1, 8, 15]), (1.0, [1, 8, 15]),
                                              (8.0, [1, 8]), (8.6, [1]), (15.0, [1])])
 def test_counts_ruled_out_by_other_processes_leave_them_their_cores(others, allowed):
-    """``n`` threads only while ``n <= available - others + 1/2`` (one thread always)."""
+    """``n`` threads only while ``n <= cpus - others + 1/2`` (one thread always); the CPUs the
+    reading covers are the ``available`` threads' unless the tuner is told otherwise."""
     tuner = ThreadTuner(available=16)
     assert sorted(set(tuner.candidates) - tuner._rule_out(others)) == allowed
+
+
+@pytest.mark.parametrize("others, allowed", [(0.0, [1, 2, 3, 4]), (10.0, [1, 2, 3, 4]), (12.0, [1, 2, 3, 4]),
+                                             (12.6, [1, 2, 3]), (13.6, [1, 2]), (15.0, [1])])
+def test_work_on_cpus_the_run_does_not_need_rules_out_nothing(others, allowed):
+    """16 CPUs in the affinity mask, 4 threads allowed (``NUMBA_NUM_THREADS=4``): 10 or 12 cores
+    busy elsewhere leave 6 or 4 idle and all 4 threads may run; 13.6 leave 2.4."""
+    tuner = ThreadTuner(available=4, cpus=16)
+    assert tuner.candidates == [1, 2, 3, 4]
+    assert sorted(set(tuner.candidates) - tuner._rule_out(others)) == allowed
+
+
+def test_the_cpus_of_the_reading_are_the_affinity_mask():
+    assert OtherLoad().cpus == (len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count())
 
 
 def test_other_load_reads_a_busy_loop_in_another_process():
