@@ -30,7 +30,7 @@ use, without repeats):
    that *other* processes used on this process's CPUs during a trial (:class:`OtherLoad`: the
    CPUs' busy time less this process's own) rules out the counts that would share a core with
    them: ``n`` threads only while ``n <= cpus - others + 1/2``, where ``cpus`` counts the CPUs
-   the reading covers (those of the affinity mask; ``available`` where no reading says), so
+   the reading covers (the affinity mask's; ``available`` unless the tuner is told), so
    that on a node of many CPUs a run limited to a few threads (``NUMBA_NUM_THREADS``, a
    container's CPU quota) is not held at one thread by work on CPUs it does not need: 16 CPUs,
    4 threads and 10 cores busy elsewhere leave 6 idle, and all 4 run. Timed blocks alone can be
@@ -157,6 +157,8 @@ class ThreadTuner:
 
     def __post_init__(self) -> None:
         self.candidates = thread_candidates(self.available)
+        if self.cpus is None:
+            self.cpus = self.available
         self.choice = 1
         self._steps = 0
         self._interval = self.recheck_seconds
@@ -206,8 +208,7 @@ class ThreadTuner:
     def _rule_out(self, others: float) -> set[int]:
         """The counts that would share a core with ``others`` cores of other processes' work
         (more threads than the ``cpus - others`` CPUs they leave idle, give or take half a core)."""
-        cpus = self.available if self.cpus is None else self.cpus
-        return {n for n in self.candidates if n > 1 and n > cpus - others + 0.5}
+        return {n for n in self.candidates if n > 1 and n > self.cpus - others + 0.5}
 
     def record(self, seconds: float, work: float) -> None:
         """Report the wall time and the work units of the step just taken."""

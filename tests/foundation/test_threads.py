@@ -92,7 +92,7 @@ def test_counts_ruled_out_by_other_processes_leave_them_their_cores(others, allo
 
 @pytest.mark.parametrize("others, allowed", [(0.0, [1, 2, 3, 4]), (10.0, [1, 2, 3, 4]), (12.0, [1, 2, 3, 4]),
                                              (12.6, [1, 2, 3]), (13.6, [1, 2]), (15.0, [1])])
-def test_work_on_cpus_the_run_does_not_need_rules_out_nothing(others, allowed):
+def test_only_the_cpus_other_work_leaves_idle_limit_the_threads(others, allowed):
     """16 CPUs in the affinity mask, 4 threads allowed (``NUMBA_NUM_THREADS=4``): 10 or 12 cores
     busy elsewhere leave 6 or 4 idle and all 4 threads may run; 13.6 leave 2.4."""
     tuner = ThreadTuner(available=4, cpus=16)
